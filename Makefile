@@ -1,0 +1,116 @@
+# posture - one plain GNU Makefile (see README.md).
+#
+#   make run     the main job (for now: the built-in human's summary and URDF)
+#   make test    unit tests (release and ASan+UBSan builds) and system tests
+#   make bench   benchmarks; each prints "BENCH <name> key=value ..." lines
+#   make deps    installs what is missing (Debian packages, Python venv)
+
+CC      ?= cc
+CFLAGS  ?= -O2 -g
+WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -MMD -MP
+LIBS    := -lm
+TESTLIBS := -lcmocka
+SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+
+VENV    := .venv
+PY      := $(VENV)/bin/python
+# Debian packages the build, tests and benchmarks need (see README: Dependencies)
+DEB_PKGS := build-essential libcglm-dev libcmocka-dev python3-venv python3-pip
+
+LIB_SRC   := $(filter-out src/main.c,$(wildcard src/*.c))
+TOOL_SRC  := $(wildcard tools/*.c)
+TEST_SRC  := $(wildcard tests/test_*.c)
+BENCH_SRC := $(wildcard tools/bench/*.c)
+
+# two builds of everything: rel (optimised) and san (ASan + UBSan)
+define variant
+$(1)_CFLAGS := $(BASE) $(WARN) $(2)
+$(1)_LDFLAGS := $(3)
+$(1)_OBJ := $$(patsubst %.c,build/$(1)/%.o,$$(LIB_SRC))
+$(1)_LIB := build/$(1)/libposture.a
+$(1)_TOOLS := $$(patsubst tools/%.c,build/$(1)/bin/%,$$(TOOL_SRC))
+$(1)_TESTS := $$(patsubst tests/%.c,build/$(1)/tests/%,$$(TEST_SRC))
+$(1)_BENCH := $$(patsubst tools/bench/%.c,build/$(1)/bench/%,$$(BENCH_SRC))
+
+build/$(1)/%.o: %.c
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$($(1)_CFLAGS) -c $$< -o $$@
+
+$$($(1)_LIB): $$($(1)_OBJ)
+	@mkdir -p $$(dir $$@)
+	rm -f $$@ && ar rcs $$@ $$^
+
+build/$(1)/bin/%: build/$(1)/tools/%.o $$($(1)_LIB)
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
+
+build/$(1)/tests/%: build/$(1)/tests/%.o $$($(1)_LIB)
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(TESTLIBS) $(LIBS) -o $$@
+
+build/$(1)/bench/%: build/$(1)/tools/bench/%.o $$($(1)_LIB)
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
+
+-include $$(patsubst %.c,build/$(1)/%.d,$$(LIB_SRC) $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC))
+endef
+
+$(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,))
+$(eval $(call variant,san,-O1 -g $(SAN),$(SAN)))
+
+.PHONY: all run test unit-test system-test bench deps check clean
+.SECONDARY:
+
+all: $(rel_LIB) $(rel_TOOLS) $(rel_TESTS) $(rel_BENCH)
+
+# ---- dependencies --------------------------------------------------------
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+deps: build/.deps-apt $(VENV)/.installed
+
+build/.deps-apt:
+	@mkdir -p build
+	@missing=$$(for p in $(DEB_PKGS); do \
+		dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; \
+	done); \
+	if [ -n "$$missing" ]; then \
+		echo "deps: installing Debian packages:" $$missing; \
+		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
+		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
+	fi
+	@touch $@
+
+$(VENV)/.installed: tests/requirements.txt | build/.deps-apt
+	@[ -x $(PY) ] || python3 -m venv $(VENV)
+	$(PY) -m pip install -q --disable-pip-version-check -r tests/requirements.txt
+	@touch $@
+
+# ---- the main job --------------------------------------------------------
+run: deps build/rel/bin/posture-figure
+	@mkdir -p build/run
+	build/rel/bin/posture-figure --human summary
+	build/rel/bin/posture-figure --human urdf > build/run/human.urdf
+	@echo "wrote build/run/human.urdf"
+
+# ---- tests ---------------------------------------------------------------
+test: deps unit-test system-test
+
+unit-test: $(rel_TESTS) $(san_TESTS) $(rel_TOOLS)
+	@set -e; for t in $(rel_TESTS) $(san_TESTS); do \
+		echo "== $$t"; ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 $$t; \
+	done
+
+system-test: $(rel_TOOLS) | deps
+	POSTURE_BUILD=build/rel $(PY) -m pytest -q tests/system
+
+check: unit-test
+
+# ---- benchmarks ----------------------------------------------------------
+bench: deps $(rel_BENCH) $(rel_TOOLS)
+	@set -e; for b in $(rel_BENCH); do echo "== $$b"; $$b; done
+	@set -e; for b in $(wildcard tools/bench/*.py); do \
+		echo "== $$b"; POSTURE_BUILD=build/rel $(PY) $$b; done
+
+clean:
+	rm -rf build

@@ -1,0 +1,37 @@
+/*
+ * figure.h - the peabody figure language (Figure A.1 style): reading a
+ * figure file into a model, and writing a model back out.
+ *
+ * Reading is all-or-nothing: on any error nothing is returned, and the
+ * message names "file:line:column: what was expected". Writing emits numbers
+ * in base units (m, rad, kg) with 17 significant digits and orientations as
+ * quaternions, so load -> save -> load gives an identical model.
+ * The grammar is documented in docs at the top of figure_read.c and in
+ * README.md.
+ */
+#ifndef POSTURE_FIGURE_H
+#define POSTURE_FIGURE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "model.h"
+
+/*
+ * Parses text. `origin` names the text in messages (a file name);
+ * `base_dir` resolves relative mesh paths (NULL: the current directory).
+ * Returns the model, or NULL with the message in err.
+ */
+struct model *figure_read_string(const char *text, size_t len, const char *origin,
+				 const char *base_dir, char *err, size_t errlen);
+
+/* reads and parses a file; mesh paths are relative to the file's directory */
+struct model *figure_read_file(const char *path, char *err, size_t errlen);
+
+/* writes m in the figure language; returns 0, or -1 on an I/O error */
+int figure_write(const struct model *m, FILE *f);
+
+/* writes to a file (write then rename); returns 0, or -1 with err set */
+int figure_write_file(const struct model *m, const char *path, char *err, size_t errlen);
+
+#endif
