@@ -212,6 +212,7 @@ model_builder_segment(struct model_builder *b, const struct segment_def *d)
 	if (grow((void **)&b->seg, &b->capseg, b->nseg, sizeof *b->seg) < 0)
 		return fail(b, "out of memory");
 	struct seg_rec *r = &b->seg[b->nseg];
+	memset(r, 0, sizeof *r); /* names are compared bytewise, padding included */
 	r->def = *d;
 	snprintf(r->name, sizeof r->name, "%s", d->name);
 	r->def.name = NULL;
@@ -235,6 +236,7 @@ model_builder_site(struct model_builder *b, int seg, const char *name, const dou
 	if (grow((void **)&b->site, &b->capsite, b->nsite, sizeof *b->site) < 0)
 		return fail(b, "out of memory");
 	struct site_rec *r = &b->site[b->nsite];
+	memset(r, 0, sizeof *r);
 	r->seg = seg;
 	snprintf(r->name, sizeof r->name, "%s", name);
 	memcpy(r->pos, pos, sizeof r->pos);
@@ -275,6 +277,7 @@ model_builder_joint(struct model_builder *b, const struct joint_def *d)
 	if (grow((void **)&b->jnt, &b->capjnt, b->njnt, sizeof *b->jnt) < 0)
 		return fail(b, "out of memory");
 	struct jnt_rec *r = &b->jnt[b->njnt];
+	memset(r, 0, sizeof *r);
 	r->def = *d;
 	snprintf(r->name, sizeof r->name, "%s", d->name);
 	r->def.name = NULL;
@@ -326,6 +329,7 @@ model_builder_mesh(struct model_builder *b, const char *path, const float *vert,
 	if (grow((void **)&b->mesh, &b->capmesh, b->nmesh, sizeof *b->mesh) < 0)
 		return fail(b, "out of memory");
 	struct mesh_rec *r = &b->mesh[b->nmesh];
+	memset(r, 0, sizeof *r);
 	r->vert = malloc(sizeof(float) * 3 * (size_t)nvert);
 	r->face = malloc(sizeof(int) * 3 * (size_t)nface);
 	if (!r->vert || !r->face) {

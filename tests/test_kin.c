@@ -317,6 +317,17 @@ test_builder_rejects_bad_trees(void **unused)
 	model_builder_free(b);
 }
 
+/* the same figure built twice is the same model, bit for bit */
+static void
+test_builder_is_deterministic(void **unused)
+{
+	(void)unused;
+	struct model *a = random_tree(11, 15), *b = random_tree(11, 15);
+	assert_true(model_equal(a, b));
+	model_free(a);
+	model_free(b);
+}
+
 int
 main(void)
 {
@@ -326,6 +337,7 @@ main(void)
 		cmocka_unit_test(test_reroot_moves_nothing),
 		cmocka_unit_test(test_joint_direction_independent_of_root),
 		cmocka_unit_test(test_builder_rejects_bad_trees),
+		cmocka_unit_test(test_builder_is_deterministic),
 	};
 	return cmocka_run_group_tests_name("kin", tests, NULL, NULL);
 }
