@@ -16,7 +16,7 @@ SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-re
 VENV    := .venv
 PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
-DEB_PKGS := build-essential libcglm-dev libcmocka-dev python3-venv python3-pip
+DEB_PKGS := build-essential libcglm-dev libcmocka-dev libeigen3-dev python3-venv python3-pip
 
 LIB_SRC   := $(filter-out src/main.c,$(wildcard src/*.c))
 TOOL_SRC  := $(wildcard tools/*.c)
@@ -107,8 +107,18 @@ system-test: $(rel_TOOLS) | deps
 check: unit-test
 
 # ---- benchmarks ----------------------------------------------------------
-bench: deps $(rel_BENCH) $(rel_TOOLS)
-	@set -e; for b in $(rel_BENCH); do echo "== $$b"; $$b; done
+# peers in C++ against the libraries the pip wheels ship (Pinocchio, Boost)
+PEER_CXXFLAGS := -O2 -std=c++17 -DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION \
+	-DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
+	-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -I/usr/include/eigen3
+
+build/rel/bench/fk_pinocchio: tools/bench/fk_pinocchio.cpp | deps
+	@mkdir -p $(dir $@)
+	P=$$(echo $(CURDIR)/$(VENV)/lib/python3*/site-packages/cmeel.prefix); \
+	$(CXX) $(PEER_CXXFLAGS) -I$$P/include -I$$P/include/pinocchio/deprecated $< \
+		-L$$P/lib -lpinocchio_default -lboost_serialization -Wl,-rpath,$$P/lib -o $@
+
+bench: deps $(rel_BENCH) $(rel_TOOLS) build/rel/bench/fk_pinocchio
 	@set -e; for b in $(wildcard tools/bench/*.py); do \
 		echo "== $$b"; POSTURE_BUILD=build/rel $(PY) $$b; done
 

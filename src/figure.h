@@ -6,8 +6,7 @@
  * message names "file:line:column: what was expected". Writing emits numbers
  * in base units (m, rad, kg) with 17 significant digits and orientations as
  * quaternions, so load -> save -> load gives an identical model.
- * The grammar is documented in docs at the top of figure_read.c and in
- * README.md.
+ * The grammar is documented at the top of figure_read.c.
  */
 #ifndef POSTURE_FIGURE_H
 #define POSTURE_FIGURE_H
@@ -28,10 +27,16 @@ struct model *figure_read_string(const char *text, size_t len, const char *origi
 /* reads and parses a file; mesh paths are relative to the file's directory */
 struct model *figure_read_file(const char *path, char *err, size_t errlen);
 
-/* writes m in the figure language; returns 0, or -1 on an I/O error */
+/*
+ * writes m in the figure language; returns 0, or -1 with errno set: EIO on
+ * an I/O error, EINVAL when m holds something the language cannot express
+ * (a name that is not [A-Za-z_][A-Za-z0-9_]*, a mesh path with '"' or a
+ * control byte, a non-finite number). Mesh geometry is written as its path;
+ * size[2] of cylinders and capsules is not written (it is unused).
+ */
 int figure_write(const struct model *m, FILE *f);
 
-/* writes to a file (write then rename); returns 0, or -1 with err set */
+/* writes to PATH.tmp, then renames it to PATH; returns 0, or -1 with err set */
 int figure_write_file(const struct model *m, const char *path, char *err, size_t errlen);
 
 #endif

@@ -56,25 +56,38 @@ top_site_frame(const struct model *m, struct state *s, int seg, struct xform *de
 	}
 }
 
+/* one segment from its parent's (already current) frames */
+static void
+forward_segment(const struct model *m, struct state *s, int seg)
+{
+	int top = s->seg_root_site[seg];
+	struct xform xtop;
+	if (s->seg_root_joint[seg] < 0)
+		xtop = s->root_xf;
+	else
+		top_site_frame(m, s, seg, &xtop);
+	xform_mul_inv(&xtop, &m->site_loc[top], &s->seg_xf[seg]);
+	int k0 = m->seg_site0[seg], nk = m->seg_nsite[seg];
+	for (int k = k0; k < k0 + nk; k++) {
+		if (k == top)
+			s->site_xf[k] = xtop;
+		else
+			xform_mul(&s->seg_xf[seg], &m->site_loc[k], &s->site_xf[k]);
+	}
+}
+
 void
 kin_forward(const struct model *m, struct state *s)
 {
-	for (int i = 0; i < m->nseg; i++) {
-		int seg = s->seg_order[i], top = s->seg_root_site[seg];
-		struct xform xtop;
-		if (i == 0)
-			xtop = s->root_xf;
-		else
-			top_site_frame(m, s, seg, &xtop);
-		xform_mul_inv(&xtop, &m->site_loc[top], &s->seg_xf[seg]);
-		int k0 = m->seg_site0[seg], nk = m->seg_nsite[seg];
-		for (int k = k0; k < k0 + nk; k++) {
-			if (k == top)
-				s->site_xf[k] = xtop;
-			else
-				xform_mul(&s->seg_xf[seg], &m->site_loc[k], &s->site_xf[k]);
-		}
-	}
+	for (int i = 0; i < m->nseg; i++)
+		forward_segment(m, s, s->seg_order[i]);
+}
+
+void
+kin_forward_segments(const struct model *m, struct state *s, const int *segs, int n)
+{
+	for (int i = 0; i < n; i++)
+		forward_segment(m, s, segs[i]);
 }
 
 void

@@ -14,6 +14,12 @@
 /* global frames of every segment and site and the world axis of every dof */
 void kin_forward(const struct model *m, struct state *s);
 
+/*
+ * the same for a subset: segs in top-down order, each one's parent current
+ * (used by IK to recompute only the chains that move)
+ */
+void kin_forward_segments(const struct model *m, struct state *s, const int *segs, int n);
+
 /* segment and sub-tree centres of mass and the figure's; needs kin_forward */
 void kin_com(const struct model *m, struct state *s);
 

@@ -1,6 +1,7 @@
 /* model.c - building, checking, copying and comparing figure models */
 #include "model.h"
 
+#include <ctype.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -116,6 +117,11 @@ check_name(struct model_builder *b, const char *what, const char *name)
 	if (strlen(name) >= MODEL_NAME_MAX)
 		return fail(b, "%s name '%.20s...' is longer than %d bytes", what, name,
 			    MODEL_NAME_MAX - 1);
+	/* names are identifiers: "segment.site" must split at the one dot */
+	for (const char *c = name; *c; c++)
+		if (!(isalnum((unsigned char)*c) || *c == '_') || (c == name && isdigit((unsigned char)*c)))
+			return fail(b, "%s name '%s': use letters, digits and '_', not starting with a digit",
+				    what, name);
 	return 0;
 }
 
@@ -306,6 +312,8 @@ model_builder_geom(struct model_builder *b, int seg, const struct geom_def *d)
 		return fail(b, "out of memory");
 	b->geom[b->ngeom].seg = seg;
 	b->geom[b->ngeom].def = *d;
+	if (nsize == 2) /* the third size means nothing for these shapes */
+		b->geom[b->ngeom].def.size[2] = 0;
 	if (d->kind != GEOM_MESH)
 		b->geom[b->ngeom].def.mesh = -1;
 	return b->ngeom++;
@@ -398,13 +406,23 @@ check_tree(struct model_builder *b)
 	return 0;
 }
 
-/* one block per array; the model owns them all */
-#define ALLOC(field, n)                                                        \
-	do {                                                                   \
-		m->field = calloc((size_t)(n) > 0 ? (size_t)(n) : 1, sizeof *m->field); \
-		if (!m->field)                                                 \
-			goto oom;                                              \
-	} while (0)
+/* every array of the model with its element count, for allocation, copy and compare */
+#define MODEL_ARRAYS(X)                                                        \
+	X(seg_name, m->nseg) X(seg_mass, m->nseg) X(seg_com, 3 * m->nseg)      \
+	X(seg_inertia, 6 * m->nseg) X(seg_rgba, 4 * m->nseg)                   \
+	X(seg_site0, m->nseg) X(seg_nsite, m->nseg) X(seg_geom0, m->nseg)      \
+	X(seg_ngeom, m->nseg) X(site_name, m->nsite) X(site_seg, m->nsite)     \
+	X(site_pos, 3 * m->nsite) X(site_quat, 4 * m->nsite)                   \
+	X(site_loc, m->nsite) X(jnt_name, m->njnt) X(jnt_site_from, m->njnt)   \
+	X(jnt_site_to, m->njnt) X(jnt_dof0, m->njnt) X(jnt_ndof, m->njnt)      \
+	X(dof_jnt, m->ndof) X(dof_kind, m->ndof) X(dof_axis, m->ndof)          \
+	X(dof_sign, m->ndof) X(dof_lo, m->ndof) X(dof_hi, m->ndof)             \
+	X(dof_init, m->ndof) X(geom_seg, m->ngeom) X(geom_kind, m->ngeom)      \
+	X(geom_size, 3 * m->ngeom) X(geom_pos, 3 * m->ngeom)                   \
+	X(geom_quat, 4 * m->ngeom) X(geom_mesh, m->ngeom)                      \
+	X(mesh_path, m->nmesh) X(mesh_vert0, m->nmesh) X(mesh_nvert, m->nmesh) \
+	X(mesh_face0, m->nmesh) X(mesh_nface, m->nmesh)                        \
+	X(mesh_vert, 3 * m->nvert) X(mesh_face, 3 * m->nface)
 
 static struct model *
 model_alloc(int nseg, int nsite, int njnt, int ndof, int ngeom, int nmesh, int nvert, int nface)
@@ -420,49 +438,16 @@ model_alloc(int nseg, int nsite, int njnt, int ndof, int ngeom, int nmesh, int n
 	m->nmesh = nmesh;
 	m->nvert = nvert;
 	m->nface = nface;
-	ALLOC(seg_name, nseg);
-	ALLOC(seg_mass, nseg);
-	ALLOC(seg_com, 3 * nseg);
-	ALLOC(seg_inertia, 6 * nseg);
-	ALLOC(seg_rgba, 4 * nseg);
-	ALLOC(seg_site0, nseg);
-	ALLOC(seg_nsite, nseg);
-	ALLOC(seg_geom0, nseg);
-	ALLOC(seg_ngeom, nseg);
-	ALLOC(site_name, nsite);
-	ALLOC(site_seg, nsite);
-	ALLOC(site_pos, 3 * nsite);
-	ALLOC(site_quat, 4 * nsite);
-	ALLOC(site_loc, nsite);
-	ALLOC(jnt_name, njnt);
-	ALLOC(jnt_site_from, njnt);
-	ALLOC(jnt_site_to, njnt);
-	ALLOC(jnt_dof0, njnt);
-	ALLOC(jnt_ndof, njnt);
-	ALLOC(dof_jnt, ndof);
-	ALLOC(dof_kind, ndof);
-	ALLOC(dof_axis, ndof);
-	ALLOC(dof_sign, ndof);
-	ALLOC(dof_lo, ndof);
-	ALLOC(dof_hi, ndof);
-	ALLOC(dof_init, ndof);
-	ALLOC(geom_seg, ngeom);
-	ALLOC(geom_kind, ngeom);
-	ALLOC(geom_size, 3 * ngeom);
-	ALLOC(geom_pos, 3 * ngeom);
-	ALLOC(geom_quat, 4 * ngeom);
-	ALLOC(geom_mesh, ngeom);
-	ALLOC(mesh_path, nmesh);
-	ALLOC(mesh_vert0, nmesh);
-	ALLOC(mesh_nvert, nmesh);
-	ALLOC(mesh_face0, nmesh);
-	ALLOC(mesh_nface, nmesh);
-	ALLOC(mesh_vert, 3 * nvert);
-	ALLOC(mesh_face, 3 * nface);
+	/* at least one element each, so an empty array is not a NULL */
+#define ALLOC(field, n)                                                        \
+	m->field = calloc((size_t)(n) > 0 ? (size_t)(n) : 1, sizeof *m->field); \
+	if (!m->field) {                                                       \
+		model_free(m);                                                 \
+		return NULL;                                                   \
+	}
+	MODEL_ARRAYS(ALLOC)
+#undef ALLOC
 	return m;
-oom:
-	model_free(m);
-	return NULL;
 }
 
 struct model *
@@ -576,65 +561,11 @@ model_free(struct model *m)
 {
 	if (!m)
 		return;
-	free(m->seg_name);
-	free(m->seg_mass);
-	free(m->seg_com);
-	free(m->seg_inertia);
-	free(m->seg_rgba);
-	free(m->seg_site0);
-	free(m->seg_nsite);
-	free(m->seg_geom0);
-	free(m->seg_ngeom);
-	free(m->site_name);
-	free(m->site_seg);
-	free(m->site_pos);
-	free(m->site_quat);
-	free(m->site_loc);
-	free(m->jnt_name);
-	free(m->jnt_site_from);
-	free(m->jnt_site_to);
-	free(m->jnt_dof0);
-	free(m->jnt_ndof);
-	free(m->dof_jnt);
-	free(m->dof_kind);
-	free(m->dof_axis);
-	free(m->dof_sign);
-	free(m->dof_lo);
-	free(m->dof_hi);
-	free(m->dof_init);
-	free(m->geom_seg);
-	free(m->geom_kind);
-	free(m->geom_size);
-	free(m->geom_pos);
-	free(m->geom_quat);
-	free(m->geom_mesh);
-	free(m->mesh_path);
-	free(m->mesh_vert0);
-	free(m->mesh_nvert);
-	free(m->mesh_face0);
-	free(m->mesh_nface);
-	free(m->mesh_vert);
-	free(m->mesh_face);
+#define FREE(field, n) free(m->field);
+	MODEL_ARRAYS(FREE)
+#undef FREE
 	free(m);
 }
-
-/* every array of the model with its element count, for copy and compare */
-#define MODEL_ARRAYS(X)                                                        \
-	X(seg_name, m->nseg) X(seg_mass, m->nseg) X(seg_com, 3 * m->nseg)      \
-	X(seg_inertia, 6 * m->nseg) X(seg_rgba, 4 * m->nseg)                   \
-	X(seg_site0, m->nseg) X(seg_nsite, m->nseg) X(seg_geom0, m->nseg)      \
-	X(seg_ngeom, m->nseg) X(site_name, m->nsite) X(site_seg, m->nsite)     \
-	X(site_pos, 3 * m->nsite) X(site_quat, 4 * m->nsite)                   \
-	X(site_loc, m->nsite) X(jnt_name, m->njnt) X(jnt_site_from, m->njnt)   \
-	X(jnt_site_to, m->njnt) X(jnt_dof0, m->njnt) X(jnt_ndof, m->njnt)      \
-	X(dof_jnt, m->ndof) X(dof_kind, m->ndof) X(dof_axis, m->ndof)          \
-	X(dof_sign, m->ndof) X(dof_lo, m->ndof) X(dof_hi, m->ndof)             \
-	X(dof_init, m->ndof) X(geom_seg, m->ngeom) X(geom_kind, m->ngeom)      \
-	X(geom_size, 3 * m->ngeom) X(geom_pos, 3 * m->ngeom)                   \
-	X(geom_quat, 4 * m->ngeom) X(geom_mesh, m->ngeom)                      \
-	X(mesh_path, m->nmesh) X(mesh_vert0, m->nmesh) X(mesh_nvert, m->nmesh) \
-	X(mesh_face0, m->nmesh) X(mesh_nface, m->nmesh)                        \
-	X(mesh_vert, 3 * m->nvert) X(mesh_face, 3 * m->nface)
 
 struct model *
 model_copy(const struct model *m)

@@ -1,0 +1,327 @@
+/*
+ * posture-figure - inspect a figure: its dofs and limits, the global frames
+ * of its sites for given postures, its centre of mass; export it as URDF or
+ * in the figure language.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "figure.h"
+#include "human.h"
+#include "kin.h"
+#include "model.h"
+#include "state.h"
+#include "urdf.h"
+
+static const char usage[] =
+	"usage: posture-figure [FIGURE OPTIONS] [POSTURE OPTIONS] COMMAND\n"
+	"\n"
+	"figure (default: the built-in human, male, 1.75 m, 75 kg):\n"
+	"  --human               the built-in standard human figure\n"
+	"  --sex male|female     its sex (sets the default stature and mass)\n"
+	"  --stature METRES      its stature\n"
+	"  --mass KG             its body mass\n"
+	"  --figure FILE         a figure file in the peabody language instead\n"
+	"posture (default: the figure's initial posture):\n"
+	"  --q-file FILE         postures, one a line: every dof value in order\n"
+	"                        (radians, metres); '-' reads standard input\n"
+	"  --random SEED         one random posture within the joint limits\n"
+	"  --root SEG.SITE       re-root through this site (in the initial posture);\n"
+	"                        postures then keep it fixed in space\n"
+	"commands:\n"
+	"  summary   counts, mass, height, centre of mass, root\n"
+	"  dofs      every dof: index, joint, kind and axis, limits, initial value\n"
+	"  sites     per posture, every site: position and rotation matrix (row-major)\n"
+	"  com       per posture, the centre of mass\n"
+	"  urdf      the figure as URDF (hierarchy of the current root)\n"
+	"  write     the figure in the figure language\n";
+
+struct options {
+	int human;
+	struct human_def hdef;
+	const char *figure, *qfile, *root, *command;
+	long seed;
+	int have_seed;
+};
+
+static int
+parse_double(const char *s, double *dest)
+{
+	char *end;
+	errno = 0;
+	*dest = strtod(s, &end);
+	return s[0] && !*end && !errno && isfinite(*dest) ? 0 : -1;
+}
+
+static int
+parse_options(int argc, char **argv, struct options *o)
+{
+	o->human = 1;
+	o->hdef = human_default_def(HUMAN_MALE);
+	int stature_set = 0, mass_set = 0;
+	double stature = 0, mass = 0;
+	for (int i = 1; i < argc; i++) {
+		const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+		int takes = strcmp(a, "--human") && strncmp(a, "--help", 6) && a[0] == '-' && a[1];
+		if (takes && !v) {
+			fprintf(stderr, "posture-figure: %s needs a value\n", a);
+			return -1;
+		}
+		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+			fputs(usage, stdout);
+			exit(0);
+		} else if (!strcmp(a, "--human")) {
+			o->human = 1;
+		} else if (!strcmp(a, "--sex")) {
+			if (strcmp(v, "male") && strcmp(v, "female")) {
+				fprintf(stderr, "posture-figure: --sex is male or female\n");
+				return -1;
+			}
+			o->hdef = human_default_def(!strcmp(v, "male") ? HUMAN_MALE : HUMAN_FEMALE);
+			i++;
+		} else if (!strcmp(a, "--stature")) {
+			if (parse_double(v, &stature) < 0)
+				goto bad_number;
+			stature_set = 1;
+			i++;
+		} else if (!strcmp(a, "--mass")) {
+			if (parse_double(v, &mass) < 0)
+				goto bad_number;
+			mass_set = 1;
+			i++;
+		} else if (!strcmp(a, "--figure")) {
+			o->figure = v;
+			o->human = 0;
+			i++;
+		} else if (!strcmp(a, "--q-file")) {
+			o->qfile = v;
+			i++;
+		} else if (!strcmp(a, "--random")) {
+			char *end;
+			o->seed = strtol(v, &end, 10);
+			if (!v[0] || *end)
+				goto bad_number;
+			o->have_seed = 1;
+			i++;
+		} else if (!strcmp(a, "--root")) {
+			o->root = v;
+			i++;
+		} else if (a[0] == '-') {
+			fprintf(stderr, "posture-figure: unknown option %s\n%s", a, usage);
+			return -1;
+		} else if (!o->command) {
+			o->command = a;
+		} else {
+			fprintf(stderr, "posture-figure: one command only (got %s and %s)\n",
+				o->command, a);
+			return -1;
+		}
+		continue;
+	bad_number:
+		fprintf(stderr, "posture-figure: %s takes a number, not '%s'\n", a, v);
+		return -1;
+	}
+	if (stature_set)
+		o->hdef.stature = stature;
+	if (mass_set)
+		o->hdef.mass = mass;
+	if (!o->command) {
+		fprintf(stderr, "posture-figure: no command\n%s", usage);
+		return -1;
+	}
+	return 0;
+}
+
+static const char *
+dof_type(const struct model *m, int d, char *buf, size_t len)
+{
+	snprintf(buf, len, "%c(%s%c)", m->dof_kind[d] == DOF_ROTATION ? 'R' : 'T',
+		 m->dof_sign[d] < 0 ? "-" : "", "xyz"[m->dof_axis[d]]);
+	return buf;
+}
+
+static void
+print_summary(const struct model *m, const struct state *s)
+{
+	double lo = 1e300, hi = -1e300;
+	for (int k = 0; k < m->nsite; k++) {
+		lo = fmin(lo, s->site_xf[k].p[1]);
+		hi = fmax(hi, s->site_xf[k].p[1]);
+	}
+	char root[2 * MODEL_NAME_MAX];
+	printf("figure %s\n", m->name);
+	printf("  segments %d, sites %d, joints %d, dofs %d, geoms %d, meshes %d\n", m->nseg,
+	       m->nsite, m->njnt, m->ndof, m->ngeom, m->nmesh);
+	printf("  mass %.3f kg\n", m->total_mass);
+	printf("  sites span y %.4f .. %.4f m\n", lo, hi);
+	printf("  centre of mass %.4f %.4f %.4f m\n", s->com[0], s->com[1], s->com[2]);
+	printf("  root %s\n", model_site_fullname(m, s->root_site, root, sizeof root));
+}
+
+static void
+print_dofs(const struct model *m)
+{
+	char t[16];
+	printf("# index joint k type lower upper initial (radians or metres)\n");
+	for (int d = 0; d < m->ndof; d++) {
+		int j = m->dof_jnt[d];
+		printf("%d %s %d %s %.17g %.17g %.17g\n", d, m->jnt_name[j], d - m->jnt_dof0[j],
+		       dof_type(m, d, t, sizeof t), m->dof_lo[d], m->dof_hi[d], m->dof_init[d]);
+	}
+}
+
+static void
+print_sites(const struct model *m, const struct state *s, int posture)
+{
+	char name[2 * MODEL_NAME_MAX];
+	printf("posture %d\n", posture);
+	for (int k = 0; k < m->nsite; k++) {
+		const struct xform *x = &s->site_xf[k];
+		printf("%s", model_site_fullname(m, k, name, sizeof name));
+		for (int r = 0; r < 3; r++)
+			printf(" %.17g", x->p[r]);
+		for (int r = 0; r < 9; r++)
+			printf(" %.17g", x->r[r]);
+		printf("\n");
+	}
+}
+
+/* the per-posture commands; returns 0 or -1 for an unknown command */
+static int
+per_posture(const struct model *m, const struct state *s, const char *cmd, int posture)
+{
+	if (!strcmp(cmd, "sites"))
+		print_sites(m, s, posture);
+	else if (!strcmp(cmd, "com"))
+		printf("com %d %.17g %.17g %.17g mass %.17g\n", posture, s->com[0], s->com[1],
+		       s->com[2], m->total_mass);
+	else if (!strcmp(cmd, "summary"))
+		print_summary(m, s);
+	else if (!strcmp(cmd, "urdf"))
+		return urdf_write(m, s, stdout);
+	else if (!strcmp(cmd, "write"))
+		return figure_write(m, stdout);
+	else if (!strcmp(cmd, "dofs"))
+		print_dofs(m);
+	else
+		return -1;
+	return 0;
+}
+
+/* reads one line of ndof numbers; 1 read, 0 end of file, -1 error */
+static int
+read_posture(FILE *f, const struct model *m, double *q, int *lineno)
+{
+	char line[1 << 16];
+	while (fgets(line, sizeof line, f)) {
+		++*lineno;
+		if (!strchr(line, '\n') && !feof(f)) {
+			fprintf(stderr, "posture-figure: q-file line %d is too long\n", *lineno);
+			return -1;
+		}
+		char *p = line, *end;
+		while (*p == ' ' || *p == '\t')
+			p++;
+		if (*p == '\n' || *p == '#' || !*p)
+			continue;
+		for (int d = 0; d < m->ndof; d++) {
+			errno = 0;
+			q[d] = strtod(p, &end);
+			if (end == p || errno || !isfinite(q[d])) {
+				fprintf(stderr, "posture-figure: q-file line %d: value %d of %d is not a number\n",
+					*lineno, d + 1, m->ndof);
+				return -1;
+			}
+			p = end;
+		}
+		while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n')
+			p++;
+		if (*p) {
+			fprintf(stderr, "posture-figure: q-file line %d: more than %d values\n",
+				*lineno, m->ndof);
+			return -1;
+		}
+		return 1;
+	}
+	return 0;
+}
+
+static int
+set_root(const struct model *m, struct state *s, const char *root)
+{
+	if (!root)
+		return 0;
+	int site = model_find_site(m, root);
+	if (site < 0) {
+		fprintf(stderr, "posture-figure: no site '%s' (give SEGMENT.SITE)\n", root);
+		return -1;
+	}
+	return state_set_root(m, s, site);
+}
+
+int
+main(int argc, char **argv)
+{
+	struct options o = { 0 };
+	if (parse_options(argc, argv, &o) < 0)
+		return 2;
+	char err[512] = "";
+	struct model *m = o.human ? human_build(&o.hdef, err, sizeof err)
+				  : figure_read_file(o.figure, err, sizeof err);
+	if (!m) {
+		fprintf(stderr, "posture-figure: %s\n", err);
+		return 1;
+	}
+	struct state *s = state_make(m);
+	int rc = 0;
+	if (!s) {
+		fprintf(stderr, "posture-figure: out of memory\n");
+		model_free(m);
+		return 1;
+	}
+	/* the root is chosen in the initial posture and stays fixed in space */
+	if (set_root(m, s, o.root) < 0) {
+		rc = 1;
+		goto out;
+	}
+	if (o.have_seed) {
+		srand((unsigned)o.seed);
+		for (int d = 0; d < m->ndof; d++)
+			s->q[d] = m->dof_lo[d] + (m->dof_hi[d] - m->dof_lo[d]) * rand() / RAND_MAX;
+		kin_update(m, s);
+	}
+	if (!o.qfile) {
+		if (per_posture(m, s, o.command, 0) < 0) {
+			fprintf(stderr, "posture-figure: unknown command '%s'\n%s", o.command, usage);
+			rc = 2;
+		}
+		goto out;
+	}
+	FILE *f = strcmp(o.qfile, "-") ? fopen(o.qfile, "r") : stdin;
+	if (!f) {
+		fprintf(stderr, "posture-figure: %s: %s\n", o.qfile, strerror(errno));
+		rc = 1;
+		goto out;
+	}
+	int lineno = 0, n = 0, got;
+	while ((got = read_posture(f, m, s->q, &lineno)) > 0) {
+		kin_update(m, s);
+		if (per_posture(m, s, o.command, n++) < 0) {
+			fprintf(stderr, "posture-figure: unknown command '%s'\n", o.command);
+			rc = 2;
+			break;
+		}
+	}
+	if (got < 0)
+		rc = 1;
+	if (f != stdin)
+		fclose(f);
+out:
+	if (fflush(stdout) != 0)
+		rc = 1;
+	state_free(s);
+	model_free(m);
+	return rc;
+}
