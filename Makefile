@@ -10,13 +10,16 @@ CFLAGS  ?= -O2 -g
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -MMD -MP
 LIBS    := -lm
-TESTLIBS := -lcmocka
+TESTLIBS := -lcmocka -lnlopt
+# NLopt is the independent minimiser the IK tests and benchmarks compare against;
+# only tests and benchmarks link it
+BENCHLIBS := -lnlopt
 SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 
 VENV    := .venv
 PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
-DEB_PKGS := build-essential libcglm-dev libcmocka-dev libeigen3-dev python3-venv python3-pip
+DEB_PKGS := build-essential libcglm-dev libcmocka-dev libnlopt-dev libeigen3-dev python3-venv python3-pip
 
 LIB_SRC   := $(filter-out src/main.c,$(wildcard src/*.c))
 TOOL_SRC  := $(wildcard tools/*.c)
@@ -51,7 +54,7 @@ build/$(1)/tests/%: build/$(1)/tests/%.o $$($(1)_LIB)
 
 build/$(1)/bench/%: build/$(1)/tools/bench/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
-	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
+	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(BENCHLIBS) $(LIBS) -o $$@
 
 -include $$(patsubst %.c,build/$(1)/%.d,$$(LIB_SRC) $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC))
 endef
