@@ -37,13 +37,14 @@ ik_default_options(void)
 	o.step_pos = 0.25;            /* §4.7.1: 25 cm */
 	o.step_ori = 5 * M_PI / 180;  /* §4.7.1: 5 degrees */
 	o.max_iter = 200;
-	o.budget_us = 0;
+	o.budget_us = 10000;          /* §4.7.2: a frame's share at 60 Hz; the loop passes its own */
 	o.tol_pos = 1e-4;
 	o.tol_ori = 1e-3;
 	o.balance_rounds = 8;
 	o.balance_tol = 1e-4;
 	o.restarts = 0;
 	o.restart_after = 50;
+	o.restart_groups = ~0u;
 	o.seed = 1;
 	return o;
 }
@@ -498,7 +499,8 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 	 double *f_first, double *f_last)
 {
 	const struct ik_options *opt = run->opt;
-	int n = ik->nvar, timed_out = 0, restarts_left = opt->restarts, met = 0, since_start = 0;
+	int n = ik->nvar, timed_out = 0, met = 0, since_start = 0;
+	int restarts_left = ik->group < 32 && (opt->restart_groups >> ik->group & 1) ? opt->restarts : 0;
 	int fresh = 1; /* 1: the metric is fresh, 2: and steepest descent was tried */
 	double *x = ik->x, *g = ik->g, *xt = ik->xt, *gt = ik->gt, *d = ik->d;
 	for (int i = 0; i < n; i++)
