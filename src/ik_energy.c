@@ -325,9 +325,11 @@ ik_eval(struct ik *ik, const struct model *m, struct state *s, const double *x, 
 			}
 		}
 	}
+	ik->spring_f = 0;
 	for (int v = 0; v < n; v++) {
-		double gs, hs;
-		f += spring_energy(ik, v, x[v], &gs, &hs);
+		double gs, hs, fs = spring_energy(ik, v, x[v], &gs, &hs);
+		f += fs;
+		ik->spring_f += fs;
 		if (grad)
 			grad[v] += gs;
 		if (metric)
@@ -343,6 +345,9 @@ ik_eval(struct ik *ik, const struct model *m, struct state *s, const double *x, 
 int
 ik_group_met(const struct ik *ik, double tol_pos, double tol_ori)
 {
+	/* a spring under tension is still working: only stationarity ends it */
+	if (ik->spring_f > 0)
+		return 0;
 	for (int ci = 0; ci < ik->n; ci++) {
 		if (!ik->in_group[ci])
 			continue;

@@ -26,6 +26,7 @@ struct ik {
 
 	/* the prepared group: its variables and what must be recomputed */
 	int group;
+	double spring_f; /* spring energy at the last evaluation */
 	int nvar;
 	int *var_dof;             /* ndof */
 	int *dof_var;             /* ndof: variable index or -1 */

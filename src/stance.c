@@ -49,6 +49,8 @@ stance_standing(struct ik *ik, const struct model *m, struct state *s, struct st
 	c.effector_axis[2] = 0;
 	c.start_joint = spine;
 	dest->torso = ik_add(ik, m, &c);
+	if (stance_limit_springs(ik, m, STANCE_SPRING_ANGLE, STANCE_SPRING_WEIGHT) < 0)
+		return -1;
 	return dest->foot_l < 0 || dest->foot_r < 0 || dest->balance < 0 || dest->torso < 0 ? -1 : 0;
 }
 
@@ -73,4 +75,17 @@ stance_hand(struct ik *ik, const struct model *m, const struct state *s, struct 
 	else
 		st->hand_l = idx;
 	return idx;
+}
+
+int
+stance_limit_springs(struct ik *ik, const struct model *m, double angle, double weight)
+{
+	static const char *const joints[] = { "knee_l", "knee_r", "elbow_l", "elbow_r" };
+	for (size_t i = 0; i < sizeof joints / sizeof *joints; i++) {
+		int j = model_find_joint(m, joints[i]);
+		/* 0 is full extension, the lower limit, for all four */
+		if (j < 0 || ik_set_spring(ik, m, m->jnt_dof0[j], -1, angle, weight) < 0)
+			return -1;
+	}
+	return 0;
 }

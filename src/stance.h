@@ -20,11 +20,22 @@ struct stance {
 
 /*
  * Roots the human through the left foot's balance site and adds the
- * standing constraints for its current posture. The balance point is the
+ * standing constraints for its current posture, and the default limit
+ * springs. The balance point is the
  * midpoint of the feet's balance sites (x = 0.5, z = 0 of Figure 5.2).
  * Returns 0, or -1 when the solver is full or the figure lacks a site.
  */
 int stance_standing(struct ik *ik, const struct model *m, struct state *s, struct stance *dest);
+
+/* default spring angle and weight of the knees and elbows (§D.1.6) */
+#define STANCE_SPRING_ANGLE (10 * M_PI / 180)
+#define STANCE_SPRING_WEIGHT 1e-3
+
+/*
+ * Puts limit springs on both knees and elbows, so that they stay off full
+ * extension ("at ease" rather than "attention", §D.1.6). Returns 0 or -1.
+ */
+int stance_limit_springs(struct ik *ik, const struct model *m, double angle, double weight);
 
 /*
  * Adds a hand constraint (group 1, after the body) on the palm, from the

@@ -13,6 +13,7 @@
 #include "human.h"
 #include "ik.h"
 #include "kin.h"
+#include "stance.h"
 
 #define DEG (M_PI / 180)
 
@@ -713,60 +714,76 @@ test_balance_with_feet_held_and_the_hand_moved(void **unused)
 	struct model *m = human();
 	struct state *s = state_make(m);
 	struct ik *ik = ik_make(m, 8);
-	int bal_l = site(m, "foot_l.balance"), bal_r = site(m, "foot_r.balance");
-	state_set_root(m, s, bal_l);
-	struct ik_constraint_def c = ik_constraint_default_def();
-	/* the right foot holds its place and orientation */
-	c.effector_site = bal_r;
-	c.goal_xf = s->site_xf[bal_r];
-	c.ori = IK_FRAME;
-	c.pos_weight = 0.5;
-	c.weight = 10;
-	int foot = ik_add(ik, m, &c);
-	/* balance: the centre of mass on the vertical line through the balance point */
-	c = ik_constraint_default_def();
-	c.effector_site = site(m, HUMAN_SITE_LOWER_TORSO);
-	c.com_effector = 1;
-	c.pos = IK_LINE;
-	for (int i = 0; i < 3; i++)
-		c.goal_xf.p[i] = (s->site_xf[bal_l].p[i] + s->site_xf[bal_r].p[i]) / 2;
-	c.weight = 10;
-	int balance = ik_add(ik, m, &c);
-	/* the chest stays vertical through the spine */
-	c = ik_constraint_default_def();
-	c.effector_site = site(m, HUMAN_SITE_CHEST);
-	c.pos = IK_POS_NONE;
-	c.ori = IK_DIRECTION;
-	c.pos_weight = 0;
-	c.effector_axis[2] = 0;
-	c.effector_axis[1] = 1;
-	c.start_joint = joint(m, "spine_0");
-	ik_add(ik, m, &c);
+	struct stance st;
+	assert_int_equal(stance_standing(ik, m, s, &st), 0);
+	int hand = stance_hand(ik, m, s, &st, 1);
+	assert_true(hand >= 0);
+	int bal_r = site(m, "foot_r.balance");
+	double foot_before[3];
+	memcpy(foot_before, s->site_xf[bal_r].p, sizeof foot_before);
 	/* the hand, solved after the body: 35 cm forward and 20 cm up */
-	c = ik_constraint_default_def();
-	int palm = site(m, "hand_r.palm");
-	c.effector_site = palm;
-	c.goal_xf.p[0] = s->site_xf[palm].p[0];
-	c.goal_xf.p[1] = s->site_xf[palm].p[1] + 0.2;
-	c.goal_xf.p[2] = s->site_xf[palm].p[2] + 0.35;
-	c.start_joint = joint(m, "clavicle_r");
-	c.group = 1;
-	int hand = ik_add(ik, m, &c);
+	struct xform g = ik_get(ik, hand)->goal_xf;
+	g.p[1] += 0.2;
+	g.p[2] += 0.35;
+	ik_set_goal(ik, hand, &g);
 	struct ik_options o = ik_default_options();
 	o.step_pos = o.step_ori = 0;
 	struct ik_result r = ik_solve(ik, m, s, &o, NULL);
 	double pe, oe;
 	ik_constraint_error(ik, m, s, hand, &pe, &oe);
-	assert_true(pe < 1e-3);
-	ik_constraint_error(ik, m, s, foot, &pe, &oe);
 	assert_true(pe < 1e-3 && oe < 1 * DEG);
-	ik_constraint_error(ik, m, s, balance, &pe, &oe);
-	double dx = s->com[0] - ik_get(ik, balance)->goal_xf.p[0];
-	double dz = s->com[2] - ik_get(ik, balance)->goal_xf.p[2];
+	/* both feet where they were */
+	for (int i = 0; i < 3; i++)
+		assert_float_equal(s->site_xf[bal_r].p[i], foot_before[i], 1e-3);
+	ik_constraint_error(ik, m, s, st.foot_r, &pe, &oe);
+	assert_true(pe < 1e-3 && oe < 1 * DEG);
+	/* the centre of mass over the balance point */
+	double dx = s->com[0] - st.balance_point[0], dz = s->com[2] - st.balance_point[2];
 	printf("balance: %d rounds, centre of mass %.2f mm from the balance line\n",
 	       r.balance_rounds, 1e3 * sqrt(dx * dx + dz * dz));
 	assert_true(sqrt(dx * dx + dz * dz) < 5e-3);
 	assert_true(r.balance_rounds >= 2); /* the hand moved the mass: at least one more round */
+	/* without balance, the same reach leaves the mass off the line */
+	state_reset(m, s);
+	ik_enable(ik, st.balance, 0);
+	ik_solve(ik, m, s, &o, NULL);
+	dx = s->com[0] - st.balance_point[0];
+	dz = s->com[2] - st.balance_point[2];
+	assert_true(sqrt(dx * dx + dz * dz) > 5e-3);
+	ik_free(ik);
+	state_free(s);
+	model_free(m);
+}
+
+/* a limit spring (§D.1.6) pushes a straight elbow out of its 10 degrees */
+static void
+test_limit_spring_keeps_the_elbow_off_full_extension(void **unused)
+{
+	(void)unused;
+	struct model *m = human();
+	struct state *s = state_make(m);
+	struct ik *ik = ik_make(m, 1);
+	int palm = site(m, "hand_r.palm"), elbow = m->jnt_dof0[joint(m, "elbow_r")];
+	struct ik_constraint_def c = ik_constraint_default_def();
+	c.effector_site = palm;
+	c.start_joint = joint(m, "clavicle_r");
+	c.goal_xf = s->site_xf[palm]; /* hold the hanging hand where it is */
+	c.weight = 10;
+	ik_add(ik, m, &c);
+	struct ik_options o = ik_default_options();
+	o.step_pos = o.step_ori = 0;
+	o.tol_pos = o.tol_ori = 0;
+	ik_solve(ik, m, s, &o, NULL);
+	assert_float_equal(s->q[elbow], 0, 1e-6); /* nothing asks it to bend */
+	assert_int_equal(ik_set_spring(ik, m, elbow, -1, 10 * DEG, 1e-3), 0);
+	struct ik_result r = ik_solve(ik, m, s, &o, NULL);
+	printf("spring: elbow %.2f deg, energy %.3g -> %.3g\n", s->q[elbow] / DEG, r.f_start, r.f_end);
+	assert_true(s->q[elbow] > 3 * DEG);
+	assert_true(r.f_end < r.f_start);
+	ik_set_spring(ik, m, elbow, -1, 10 * DEG, 0); /* weight 0 removes it */
+	state_reset(m, s);
+	ik_solve(ik, m, s, &o, NULL);
+	assert_float_equal(s->q[elbow], 0, 1e-6);
 	ik_free(ik);
 	state_free(s);
 	model_free(m);
@@ -854,6 +871,7 @@ main(void)
 		cmocka_unit_test(test_time_limit_cuts_after_one_iteration_and_replays_identically),
 		cmocka_unit_test(test_step_factor_walks_the_effector_to_the_goal),
 		cmocka_unit_test(test_balance_with_feet_held_and_the_hand_moved),
+		cmocka_unit_test(test_limit_spring_keeps_the_elbow_off_full_extension),
 		cmocka_unit_test(test_solving_allocates_nothing),
 		cmocka_unit_test(test_bad_definitions_are_rejected),
 	};
