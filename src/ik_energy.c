@@ -61,11 +61,16 @@ norm3(const double v[3])
 	return sqrt(mathx_dot(v, v));
 }
 
+static void mat_mul(const double a[9], const double b[9], double dest[9]);
+static void perpendicular(const double v[3], double dest[3]);
+
 /*
  * A constraint's energy is a weighted sum of squares of a residual vector:
  * wp |r_pos|^2 + wo |r_ori|^2, r_pos the position residual (3 components,
- * or 1 for a plane), r_ori the orientation residual (frame: the 3 axis
- * differences, 9 components; direction and aim: 3). The gradient and the
+ * or 1 for a plane), r_ori the orientation residual: for frame and
+ * direction the rotation vector (angle times axis) still to turn, so the
+ * energy is the squared angle and stays well shaped for large angles; for
+ * aim the difference of the aim vector and the unit vector to the goal. The gradient and the
  * Gauss-Newton metric both come from the residual's derivatives.
  */
 struct con_terms {
@@ -116,32 +121,35 @@ con_residual(struct ik_con *c, const struct xform *E, const struct xform *Gp,
 	case IK_ORI_NONE:
 		break;
 	case IK_FRAME: {
-		double cv[3] = { 0, 0, 0 }, dot = 0, x[3];
-		for (int i = 0; i < 3; i++) {
-			for (int r = 0; r < 3; r++) {
-				k->u[i][r] = E->r[3 * r + i];
-				k->v[i][r] = Go->r[3 * r + i];
-				ro[3 * i + r] = k->u[i][r] - k->v[i][r];
-			}
-			mathx_cross(k->u[i], k->v[i], x);
-			for (int r = 0; r < 3; r++)
-				cv[r] += x[r];
-			dot += mathx_dot(k->u[i], k->v[i]);
-		}
-		k->no = 9;
-		/* |sum u_i x v_i| = 2 sin(angle), sum u_i . v_i = 1 + 2 cos(angle) */
-		c->ori_err = atan2(norm3(cv) / 2, (dot - 1) / 2);
+		/* the rotation vector of goal * effector^T: angle times world axis */
+		double et[9], rel[9], q[4];
+		for (int i = 0; i < 3; i++)
+			for (int j = 0; j < 3; j++)
+				et[3 * i + j] = E->r[3 * j + i];
+		mat_mul(Go->r, et, rel);
+		mathx_mat_to_quat(rel, q);
+		double sn = norm3(q), angle = 2 * atan2(sn, q[3]);
+		double scale = sn > 1e-12 ? angle / sn : 2; /* 2 q_v as the angle vanishes */
+		for (int r = 0; r < 3; r++)
+			ro[r] = scale * q[r];
+		k->no = 3;
+		c->ori_err = angle;
 		break;
 	}
 	case IK_DIRECTION: {
+		/* angle times the unit axis that turns the effector vector onto the goal's */
 		double x[3];
 		rotate_vec(E->r, d->effector_axis, k->u[0]);
 		rotate_vec(Go->r, d->goal_axis, k->v[0]);
-		for (int r = 0; r < 3; r++)
-			ro[r] = k->u[0][r] - k->v[0][r];
-		k->no = 3;
 		mathx_cross(k->u[0], k->v[0], x);
-		c->ori_err = atan2(norm3(x), mathx_dot(k->u[0], k->v[0]));
+		double sn = norm3(x), angle = atan2(sn, mathx_dot(k->u[0], k->v[0]));
+		if (sn < 1e-12 && angle > 1) /* opposite: any axis across u */
+			perpendicular(k->u[0], x), sn = 1;
+		double scale = sn > 1e-12 ? angle / sn : 1;
+		for (int r = 0; r < 3; r++)
+			ro[r] = scale * x[r];
+		k->no = 3;
+		c->ori_err = angle;
 		break;
 	}
 	case IK_AIM: {
@@ -201,19 +209,24 @@ con_residual_deriv(const struct ik_con *c, const struct con_terms *k, const doub
 		dr[0] = mathx_dot(k->a, dlt) + mathx_dot(da, k->d0);
 		break;
 	}
-	double *dro = dr + k->np, x[3], y[3];
+	double *dro = dr + k->np, x[3];
 	switch (d->ori) {
 	case IK_ORI_NONE:
 		break;
 	case IK_FRAME:
-	case IK_DIRECTION:
-		for (int i = 0; i < k->no / 3; i++) {
-			mathx_cross(we, k->u[i], x);
-			mathx_cross(wg, k->v[i], y);
-			for (int r = 0; r < 3; r++)
-				dro[3 * i + r] = x[r] - y[r];
-		}
+		/* d r = J^-1 (wg - we) with r^T J^-1 = r^T: exact for the gradient,
+		 * the small-angle metric for Gauss-Newton */
+		for (int r = 0; r < 3; r++)
+			dro[r] = wg[r] - we[r];
 		break;
+	case IK_DIRECTION: {
+		/* turning about the effector vector itself changes nothing */
+		double w[3] = { wg[0] - we[0], wg[1] - we[1], wg[2] - we[2] };
+		double along = mathx_dot(w, k->u[0]);
+		for (int r = 0; r < 3; r++)
+			dro[r] = w[r] - along * k->u[0][r];
+		break;
+	}
 	case IK_AIM: {
 		if (!k->no)
 			break;
