@@ -78,20 +78,26 @@ ik_make(const struct model *m, int max_constraints)
 	ik->spring_angle = calloc(nd, sizeof(double));
 	ik->spring_weight = calloc(nd, sizeof(double));
 	ik->spring_side = calloc(nd, 1);
-	ik->var_dof = calloc(nd, sizeof(int));
-	ik->dof_var = calloc(nd, sizeof(int));
-	ik->lo = calloc(nd, sizeof(double));
-	ik->hi = calloc(nd, sizeof(double));
-	ik->dyn_seg = calloc((size_t)m->nseg, sizeof(int));
-	ik->moves_eff = calloc(cap * nd, 1);
-	ik->moves_goal = calloc(cap * nd, 1);
-	ik->in_group = calloc(cap, 1);
+	int ok = 1;
+	for (int g = 0; g < IK_MAX_GROUPS; g++) {
+		struct ik_chain *ch = &ik->chain[g];
+		ch->var_dof = calloc(nd, sizeof(int));
+		ch->dof_var = calloc(nd, sizeof(int));
+		ch->lo = calloc(nd, sizeof(double));
+		ch->hi = calloc(nd, sizeof(double));
+		ch->dyn_seg = calloc((size_t)m->nseg, sizeof(int));
+		ch->moves_eff = calloc(cap * nd, 1);
+		ch->moves_goal = calloc(cap * nd, 1);
+		ch->in_group = calloc(cap, 1);
+		ok = ok && ch->var_dof && ch->dof_var && ch->lo && ch->hi && ch->dyn_seg &&
+		     ch->moves_eff && ch->moves_goal && ch->in_group;
+	}
+	ik->move_seg = calloc((size_t)m->nseg, sizeof(int));
 	ik->seg_mark = calloc((size_t)m->nseg, 1);
 	double **work[] = { &ik->x, &ik->g, &ik->xt, &ik->gt, &ik->d, &ik->sv, &ik->yv, &ik->hy,
 			    &ik->best };
-	int ok = ik->con && ik->spring_angle && ik->spring_weight && ik->spring_side &&
-		 ik->var_dof && ik->dof_var && ik->lo && ik->hi && ik->dyn_seg && ik->moves_eff &&
-		 ik->moves_goal && ik->in_group && ik->seg_mark;
+	ok = ok && ik->con && ik->spring_angle && ik->spring_weight && ik->spring_side &&
+	     ik->move_seg && ik->seg_mark;
 	for (size_t i = 0; i < sizeof work / sizeof *work; i++) {
 		*work[i] = calloc(nd, sizeof(double));
 		ok = ok && *work[i];
@@ -118,14 +124,18 @@ ik_free(struct ik *ik)
 	free(ik->spring_angle);
 	free(ik->spring_weight);
 	free(ik->spring_side);
-	free(ik->var_dof);
-	free(ik->dof_var);
-	free(ik->lo);
-	free(ik->hi);
-	free(ik->dyn_seg);
-	free(ik->moves_eff);
-	free(ik->moves_goal);
-	free(ik->in_group);
+	for (int g = 0; g < IK_MAX_GROUPS; g++) {
+		struct ik_chain *ch = &ik->chain[g];
+		free(ch->var_dof);
+		free(ch->dof_var);
+		free(ch->lo);
+		free(ch->hi);
+		free(ch->dyn_seg);
+		free(ch->moves_eff);
+		free(ch->moves_goal);
+		free(ch->in_group);
+	}
+	free(ik->move_seg);
 	free(ik->seg_mark);
 	free(ik->x);
 	free(ik->g);
@@ -182,7 +192,7 @@ valid_def(const struct model *m, const struct ik_constraint_def *d)
 		return 0;
 	if ((d->ori == IK_DIRECTION || d->ori == IK_AIM) && !unit_axis(d->effector_axis))
 		return 0;
-	return d->group >= 0;
+	return d->group >= 0 && d->group < IK_MAX_GROUPS;
 }
 
 int
@@ -193,6 +203,7 @@ ik_add(struct ik *ik, const struct model *m, const struct ik_constraint_def *def
 	memset(&ik->con[ik->n], 0, sizeof ik->con[ik->n]);
 	ik->con[ik->n].def = *def;
 	ik->con[ik->n].goal_pos = ik->con[ik->n].goal_ori = def->goal_xf;
+	ik->gen++;
 	return ik->n++;
 }
 
@@ -203,6 +214,7 @@ ik_set(struct ik *ik, const struct model *m, int c, const struct ik_constraint_d
 		return -1;
 	ik->con[c].def = *def;
 	ik->con[c].goal_pos = ik->con[c].goal_ori = def->goal_xf;
+	ik->gen++;
 	return 0;
 }
 
@@ -222,6 +234,7 @@ void
 ik_clear(struct ik *ik)
 {
 	ik->n = 0;
+	ik->gen++;
 }
 
 int
@@ -239,6 +252,8 @@ ik_enable(struct ik *ik, int c, int on)
 {
 	if (c < 0 || c >= ik->n)
 		return -1;
+	if (ik->con[c].def.enabled != !!on)
+		ik->gen++;
 	ik->con[c].def.enabled = !!on;
 	return 0;
 }
@@ -286,7 +301,24 @@ mark_path(struct ik *ik, const struct state *s, int seg)
 int
 ik_prepare(struct ik *ik, const struct model *m, struct state *s, int group)
 {
+	if (group < 0 || group >= IK_MAX_GROUPS)
+		return 0;
+	struct ik_chain *ch = &ik->chain[group];
 	ik->group = group;
+	ik->var_dof = ch->var_dof;
+	ik->dof_var = ch->dof_var;
+	ik->lo = ch->lo;
+	ik->hi = ch->hi;
+	ik->dyn_seg = ch->dyn_seg;
+	ik->moves_eff = ch->moves_eff;
+	ik->moves_goal = ch->moves_goal;
+	ik->in_group = ch->in_group;
+	if (ch->valid && ch->gen == ik->gen && ch->root_site == s->root_site) {
+		ik->nvar = ch->nvar;
+		ik->ndyn = ch->ndyn;
+		return ik->nvar;
+	}
+	ik->rebuilt++;
 	ik->nvar = 0;
 	for (int d = 0; d < m->ndof; d++)
 		ik->dof_var[d] = -1;
@@ -330,6 +362,11 @@ ik_prepare(struct ik *ik, const struct model *m, struct state *s, int group)
 				kin_dof_moves(m, s, ik->var_dof[v], m->site_seg[d->goal_site]);
 		}
 	}
+	ch->valid = 1;
+	ch->gen = ik->gen;
+	ch->root_site = s->root_site;
+	ch->nvar = ik->nvar;
+	ch->ndyn = ik->ndyn;
 	return ik->nvar;
 }
 
@@ -633,15 +670,16 @@ static int
 moving_segments(const struct ik *ik, const struct model *m, const struct state *s, int *dest)
 {
 	int n = 0;
+	memset(ik->seg_mark, 0, (size_t)m->nseg);
 	for (int i = 0; i < m->nseg; i++) {
 		int seg = s->seg_order[i], j = s->seg_root_joint[seg], moving = 0;
 		if (j >= 0) {
 			for (int d = m->jnt_dof0[j]; d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++)
 				moving |= ik->dof_var[d] >= 0;
-			moving |= ik->seg_mark[s->seg_parent[seg]] == 2;
+			moving |= ik->seg_mark[s->seg_parent[seg]];
 		}
 		if (moving) {
-			ik->seg_mark[seg] = 2;
+			ik->seg_mark[seg] = 1;
 			dest[n++] = seg;
 		}
 	}
@@ -668,6 +706,7 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 {
 	struct ik_result res = { 0 };
 	struct group_run run = { opt, clock, 0, &res, opt->seed };
+	ik->rebuilt = 0;
 	res.status = IK_CONVERGED;
 	if (opt->budget_us && clock)
 		run.deadline = clock_now(clock) + opt->budget_us;
@@ -701,7 +740,7 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 			for (int i = 0; i < ik->nvar; i++)
 				res.active_limits += ik->x[i] <= ik->lo[i] || ik->x[i] >= ik->hi[i];
 			/* bring the rest of the figure below the moved joints along */
-			kin_forward_segments(m, s, ik->dyn_seg, moving_segments(ik, m, s, ik->dyn_seg));
+			kin_forward_segments(m, s, ik->move_seg, moving_segments(ik, m, s, ik->move_seg));
 		}
 		first = 0;
 		kin_com(m, s);
@@ -716,6 +755,7 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 		if (sqrt(moved) < opt->balance_tol)
 			break;
 	}
+	res.chains_rebuilt = ik->rebuilt;
 	/* met: every enabled constraint within tolerance of this solve's goals */
 	attach_com(ik, s);
 	res.met = 1;

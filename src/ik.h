@@ -58,7 +58,7 @@ struct ik_constraint_def {
 	double pos_weight;       /* share of the position objective, 0..1 */
 	double weight;
 	int start_joint;         /* the chain runs from the effector up to this joint; -1: to the root */
-	int group;               /* solved in order of group: 0 the body, 1 the hands (§D.1.5) */
+	int group;               /* solved in order of group, 0..3: 0 the body, 1 the hands (§D.1.5) */
 	int com_effector;        /* 1: the effector is the figure's centre of mass (§4.5.2) */
 	int enabled;
 };
@@ -110,6 +110,7 @@ struct ik_result {
 	double f_start, f_end; /* potential energy before and after */
 	int active_limits;  /* variables resting on a joint limit at the end */
 	int trace_len;      /* entries written to opt->trace */
+	int chains_rebuilt; /* groups whose variables had to be worked out again */
 };
 
 struct ik;

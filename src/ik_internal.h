@@ -16,15 +16,35 @@ struct ik_con {
 	double pos_err, ori_err; /* at the last evaluation */
 };
 
+#define IK_MAX_GROUPS 4
+
+/*
+ * One group's variables and what they move, kept until the constraint set
+ * or the root changes, so that moving goals rebuilds nothing.
+ */
+struct ik_chain {
+	int valid;
+	unsigned gen;  /* ik->gen when built */
+	int root_site; /* the root it was built for */
+	int nvar, ndyn;
+	int *var_dof, *dof_var, *dyn_seg;
+	double *lo, *hi;
+	unsigned char *moves_eff, *moves_goal, *in_group;
+};
+
 struct ik {
 	int cap, n, ndof;
 	struct ik_con *con;
+	struct ik_chain chain[IK_MAX_GROUPS];
+	unsigned gen;   /* bumped whenever a constraint is added, redefined or switched */
+	int rebuilt;    /* chains rebuilt by the current solve */
+	int *move_seg;  /* nseg scratch: every segment below a variable */
 
 	/* limit springs, per dof */
 	double *spring_angle, *spring_weight;
 	signed char *spring_side;
 
-	/* the prepared group: its variables and what must be recomputed */
+	/* the prepared group: pointers into its chain */
 	int group;
 	double spring_f; /* spring energy at the last evaluation */
 	int nvar;
