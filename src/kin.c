@@ -66,13 +66,24 @@ forward_segment(const struct model *m, struct state *s, int seg)
 		xtop = s->root_xf;
 	else
 		top_site_frame(m, s, seg, &xtop);
-	xform_mul_inv(&xtop, &m->site_loc[top], &s->seg_xf[seg]);
+	struct xform *sx = &s->seg_xf[seg];
+	if (m->site_pure[top]) { /* the common case: sites placed by translation */
+		memcpy(sx->r, xtop.r, sizeof sx->r);
+		xform_apply(&xtop, m->site_loc_inv[top].p, sx->p);
+	} else {
+		xform_mul(&xtop, &m->site_loc_inv[top], sx);
+	}
 	int k0 = m->seg_site0[seg], nk = m->seg_nsite[seg];
 	for (int k = k0; k < k0 + nk; k++) {
-		if (k == top)
-			s->site_xf[k] = xtop;
-		else
-			xform_mul(&s->seg_xf[seg], &m->site_loc[k], &s->site_xf[k]);
+		struct xform *kx = &s->site_xf[k];
+		if (k == top) {
+			*kx = xtop;
+		} else if (m->site_pure[k]) {
+			memcpy(kx->r, sx->r, sizeof kx->r);
+			xform_apply(sx, m->site_loc[k].p, kx->p);
+		} else {
+			xform_mul(sx, &m->site_loc[k], kx);
+		}
 	}
 }
 

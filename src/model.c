@@ -413,7 +413,8 @@ check_tree(struct model_builder *b)
 	X(seg_site0, m->nseg) X(seg_nsite, m->nseg) X(seg_geom0, m->nseg)      \
 	X(seg_ngeom, m->nseg) X(site_name, m->nsite) X(site_seg, m->nsite)     \
 	X(site_pos, 3 * m->nsite) X(site_quat, 4 * m->nsite)                   \
-	X(site_loc, m->nsite) X(jnt_name, m->njnt) X(jnt_site_from, m->njnt)   \
+	X(site_loc, m->nsite) X(site_loc_inv, m->nsite) X(site_pure, m->nsite)             \
+	X(jnt_name, m->njnt) X(jnt_site_from, m->njnt)   \
 	X(jnt_site_to, m->njnt) X(jnt_dof0, m->njnt) X(jnt_ndof, m->njnt)      \
 	X(dof_jnt, m->ndof) X(dof_kind, m->ndof) X(dof_axis, m->ndof)          \
 	X(dof_sign, m->ndof) X(dof_lo, m->ndof) X(dof_hi, m->ndof)             \
@@ -495,6 +496,9 @@ model_builder_finish(struct model_builder *b)
 			memcpy(&m->site_pos[3 * ns], b->site[i].pos, sizeof b->site[i].pos);
 			memcpy(&m->site_quat[4 * ns], b->site[i].quat, sizeof b->site[i].quat);
 			xform_from_pos_quat(b->site[i].pos, b->site[i].quat, &m->site_loc[ns]);
+			xform_inv(&m->site_loc[ns], &m->site_loc_inv[ns]);
+			m->site_pure[ns] = b->site[i].quat[0] == 0 && b->site[i].quat[1] == 0 &&
+					   b->site[i].quat[2] == 0;
 			ns++;
 		}
 		m->seg_nsite[s] = ns - m->seg_site0[s];

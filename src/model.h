@@ -54,6 +54,8 @@ struct model {
 	double *site_pos;                  /* nsite x 3 */
 	double *site_quat;                 /* nsite x 4: as read, so save -> load is exact */
 	struct xform *site_loc;            /* nsite: pos + quat as a transform */
+	struct xform *site_loc_inv;        /* nsite: its inverse */
+	unsigned char *site_pure;          /* nsite: 1 when the location is a pure translation */
 
 	/* joints: connect site_from to site_to; transform = dof_0 * dof_1 * ... */
 	char (*jnt_name)[MODEL_NAME_MAX]; /* njnt */
