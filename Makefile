@@ -115,13 +115,20 @@ PEER_CXXFLAGS := -O2 -std=c++17 -DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION \
 	-DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
 	-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -I/usr/include/eigen3
 
-build/rel/bench/fk_pinocchio: tools/bench/fk_pinocchio.cpp | deps
+PEER_BENCH := $(patsubst tools/bench/%.cpp,build/rel/bench/%,$(wildcard tools/bench/*.cpp))
+
+$(PEER_BENCH): build/rel/bench/%: tools/bench/%.cpp | deps
 	@mkdir -p $(dir $@)
 	P=$$(echo $(CURDIR)/$(VENV)/lib/python3*/site-packages/cmeel.prefix); \
 	$(CXX) $(PEER_CXXFLAGS) -I$$P/include -I$$P/include/pinocchio/deprecated $< \
 		-L$$P/lib -lpinocchio_default -lboost_serialization -Wl,-rpath,$$P/lib -o $@
 
-bench: deps $(rel_BENCH) $(rel_TOOLS) build/rel/bench/fk_pinocchio
+# C benchmarks that need no peer run on their own; the others are run by the
+# Python orchestrators (tools/bench/*.py), which measure ours and the peers
+BENCH_STANDALONE := build/rel/bench/ik_body
+
+bench: deps $(rel_BENCH) $(rel_TOOLS) $(PEER_BENCH)
+	@set -e; for b in $(BENCH_STANDALONE); do echo "== $$b"; $$b; done
 	@set -e; for b in $(wildcard tools/bench/*.py); do \
 		echo "== $$b"; POSTURE_BUILD=build/rel $(PY) $$b; done
 

@@ -547,10 +547,11 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 	*f_first = f;
 	trace(run, f);
 	memcpy(ik->best, x, sizeof *x * (size_t)n);
-	for (int iter = 0;; iter++) {
+	double recent[8]; /* the energy over the last iterations of this start */
+	for (;;) {
 		if ((met = ik_group_met(ik, opt->tol_pos, opt->tol_ori)))
 			break;
-		if (iter >= opt->max_iter) {
+		if (since_start >= opt->max_iter) {
 			run->res->status = IK_ITER_LIMIT;
 			break;
 		}
@@ -559,7 +560,10 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 			break;
 		}
 		run->res->iterations++;
-		if (restarts_left > 0 && ++since_start > opt->restart_after)
+		/* a start that has stopped making headway gives way to the next one */
+		recent[since_start % 8] = f;
+		if (restarts_left > 0 && ++since_start > opt->restart_after && since_start > 8 &&
+		    f > 0.5 * recent[since_start % 8])
 			goto stationary;
 		/* a variable came off or onto a bound: the metric is stale */
 		int changed = 0;

@@ -83,14 +83,15 @@ struct ik_clock {
 struct ik_options {
 	double step_pos;    /* step factor: metres per solve (§4.7.1), 0 = off */
 	double step_ori;    /* step factor: radians per solve, 0 = off */
-	int max_iter;       /* per group and balance round */
+	int max_iter;       /* per start of a group in a balance round */
 	uint64_t budget_us; /* wall-clock limit of the whole solve (needs a clock), 0 = none */
 	double tol_pos;     /* metres: a position objective is met below this */
 	double tol_ori;     /* radians: an orientation objective is met below this */
 	int balance_rounds; /* at most this many centre-of-mass rounds (§4.5.2) */
 	double balance_tol; /* metres: the centre of mass has settled when it moves less */
 	int restarts;       /* random restarts allowed when stuck away from the goals */
-	int restart_after;  /* with restarts left: iterations from one start before the next */
+	int restart_after;  /* with restarts left: iterations from one start before the next,
+			     once the energy halves no more in 8 iterations */
 	unsigned restart_groups; /* bit g set: group g may restart (default all) */
 	uint32_t seed;      /* for restarts */
 	double *trace;      /* optional: the energy after every iteration, for tests */

@@ -29,7 +29,7 @@ int stance_standing(struct ik *ik, const struct model *m, struct state *s, struc
 
 /* default spring angle and weight of the knees and elbows (§D.1.6) */
 #define STANCE_SPRING_ANGLE (10 * M_PI / 180)
-#define STANCE_SPRING_WEIGHT 1e-3
+#define STANCE_SPRING_WEIGHT 1e-4
 
 /*
  * Puts limit springs on both knees and elbows, so that they stay off full
