@@ -1,6 +1,6 @@
 # posture - one plain GNU Makefile (see README.md).
 #
-#   make run     the main job (for now: the built-in human's summary and URDF)
+#   make run     the main job: the daemon with the built-in human, rendering frames
 #   make test    unit tests (release and ASan+UBSan builds) and system tests
 #   make bench   benchmarks; each prints "BENCH <name> key=value ..." lines
 #   make deps    installs what is missing (Debian packages, Python venv)
@@ -8,8 +8,8 @@
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -MMD -MP
-LIBS    := -lm
+BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I/usr/include/freetype2 -MMD -MP
+LIBS    := -ljansson -lOSMesa -lfreetype -lpng -lm
 TESTLIBS := -lcmocka -lnlopt
 # NLopt is the independent minimiser the IK tests and benchmarks compare against;
 # only tests and benchmarks link it
@@ -19,7 +19,7 @@ SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-re
 VENV    := .venv
 PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
-DEB_PKGS := build-essential libcglm-dev libcmocka-dev libnlopt-dev libeigen3-dev python3-venv python3-pip
+DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip
 
 LIB_SRC   := $(filter-out src/main.c,$(wildcard src/*.c))
 TOOL_SRC  := $(wildcard tools/*.c)
@@ -32,7 +32,7 @@ $(1)_CFLAGS := $(BASE) $(WARN) $(2)
 $(1)_LDFLAGS := $(3)
 $(1)_OBJ := $$(patsubst %.c,build/$(1)/%.o,$$(LIB_SRC))
 $(1)_LIB := build/$(1)/libposture.a
-$(1)_TOOLS := $$(patsubst tools/%.c,build/$(1)/bin/%,$$(TOOL_SRC))
+$(1)_TOOLS := $$(patsubst tools/%.c,build/$(1)/bin/%,$$(TOOL_SRC)) build/$(1)/bin/postured
 $(1)_TESTS := $$(patsubst tests/%.c,build/$(1)/tests/%,$$(TEST_SRC))
 $(1)_BENCH := $$(patsubst tools/bench/%.c,build/$(1)/bench/%,$$(BENCH_SRC))
 
@@ -48,6 +48,10 @@ build/$(1)/bin/%: build/$(1)/tools/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
 
+build/$(1)/bin/postured: build/$(1)/src/main.o $$($(1)_LIB)
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
+
 build/$(1)/tests/%: build/$(1)/tests/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(TESTLIBS) $(LIBS) -o $$@
@@ -56,7 +60,7 @@ build/$(1)/bench/%: build/$(1)/tools/bench/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(BENCHLIBS) $(LIBS) -o $$@
 
--include $$(patsubst %.c,build/$(1)/%.d,$$(LIB_SRC) $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC))
+-include $$(patsubst %.c,build/$(1)/%.d,$$(LIB_SRC) src/main.c $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC))
 endef
 
 $(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,))
@@ -90,11 +94,10 @@ $(VENV)/.installed: tests/requirements.txt | build/.deps-apt
 	@touch $@
 
 # ---- the main job --------------------------------------------------------
-run: deps build/rel/bin/posture-figure
+run: deps build/rel/bin/postured build/rel/bin/posture-figure
 	@mkdir -p build/run
-	build/rel/bin/posture-figure --human summary
-	build/rel/bin/posture-figure --human urdf > build/run/human.urdf
-	@echo "wrote build/run/human.urdf"
+	build/rel/bin/postured --socket build/run/postured.sock --state-dir build/run/state \
+		--frames build/run/frames --init tools/kiosk.init
 
 # ---- tests ---------------------------------------------------------------
 test: deps unit-test system-test

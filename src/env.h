@@ -1,0 +1,95 @@
+/*
+ * env.h - the environment (§A.3): the figures the daemon holds, their
+ * constraints, and the ids clients use for them.
+ *
+ * Ids carry a generation (Box2D's b2BodyId): a slot reused by a later
+ * figure or constraint has a new generation, so an old id is refused as
+ * stale rather than silently naming something else.
+ */
+#ifndef POSTURE_ENV_H
+#define POSTURE_ENV_H
+
+#include <stdint.h>
+
+#include "human.h"
+#include "ik.h"
+#include "model.h"
+#include "state.h"
+
+#define ENV_MAX_FIGURES 16
+#define ENV_MAX_CONSTRAINTS 64
+#define ENV_PATH_MAX 256
+
+enum env_err {
+	ENV_OK = 0,
+	ENV_NOT_FOUND = -1,
+	ENV_STALE = -2,
+	ENV_EXISTS = -3,
+	ENV_FULL = -4,
+	ENV_BAD = -5,
+};
+
+struct env_figure {
+	uint32_t gen; /* 0: a free slot */
+	char name[MODEL_NAME_MAX];
+	/* where the model came from, so a session can rebuild it */
+	int is_human;
+	struct human_def human;
+	char path[ENV_PATH_MAX]; /* figure file, relative to the state directory */
+	struct model *model;
+	struct state *state;
+	struct ik *ik;
+	int ik_stale; /* the constraint set changed since the solver was filled */
+};
+
+struct env_constraint {
+	uint32_t gen; /* 0: a free slot */
+	char name[MODEL_NAME_MAX];
+	int fig; /* figure slot; the def's site and joint indices are that figure's */
+	struct ik_constraint_def def;
+};
+
+struct env {
+	struct env_figure fig[ENV_MAX_FIGURES];
+	struct env_constraint con[ENV_MAX_CONSTRAINTS];
+	uint32_t next_gen;
+};
+
+void env_init(struct env *e);
+/* frees every figure; the env is empty and usable afterwards */
+void env_clear(struct env *e);
+
+/*
+ * Adds a figure, taking ownership of model (freed on failure too).
+ * name NULL picks one from the model's. Returns the slot or an env_err.
+ */
+int env_add_figure(struct env *e, struct model *model, const char *name, int is_human,
+		   const struct human_def *human, const char *path);
+/* removes a figure and its constraints */
+void env_remove_figure(struct env *e, int slot);
+
+/* ref is a name or an id "f<slot>.<gen>"; returns the slot or an env_err */
+int env_find_figure(const struct env *e, const char *ref);
+int env_find_constraint(const struct env *e, const char *ref);
+
+/* writes the id of a slot ("f3.12", "c0.7") into dest */
+void env_figure_id(const struct env *e, int slot, char dest[32]);
+void env_constraint_id(const struct env *e, int slot, char dest[32]);
+
+/* adds a constraint (name NULL: c1, c2, ...); returns the slot or an env_err */
+int env_add_constraint(struct env *e, int fig, const char *name,
+		       const struct ik_constraint_def *def);
+void env_remove_constraint(struct env *e, int slot);
+/* replaces a constraint's definition (goal moves, switching on and off) */
+void env_set_constraint(struct env *e, int slot, const struct ik_constraint_def *def);
+
+/* refills a figure's solver from its constraints when they changed */
+void env_sync_solver(struct env *e, int fig);
+
+/* the constraint's index in its figure's solver, or -1 (disabled or not yet synced) */
+int env_solver_index(const struct env *e, int slot);
+
+/* number of figures */
+int env_count(const struct env *e);
+
+#endif

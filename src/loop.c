@@ -1,0 +1,449 @@
+/* loop.c - the frame loop: the only file that sees compute and I/O together */
+#include "loop.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/signalfd.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cmd.h"
+#include "kin.h"
+#include "notify.h"
+
+struct loop {
+	struct daemon d;
+	struct server srv;
+	struct journal j;
+	int sig_fd;
+	uint64_t period_us;
+	uint64_t synced_seq;  /* the last journal record known to be on disk */
+	uint64_t virtual_us;  /* the clock of settle's frames */
+	uint64_t fps_t0, fps_frames;
+	uint64_t watchdog_us, watchdog_last;
+	int stop;
+};
+
+static uint64_t
+real_now(void *ctx)
+{
+	(void)ctx;
+	struct timespec t;
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+}
+
+/* settle's clock: every read advances it, so the time limit cuts alike on every run */
+static uint64_t
+virtual_now(void *ctx)
+{
+	struct loop *L = ctx;
+	return L->virtual_us += 20;
+}
+
+/* ---- events ------------------------------------------------------------------ */
+
+static void
+send_event(struct loop *L, unsigned kind, json_t *ev)
+{
+	char *s = NULL;
+	size_t len = 0;
+	for (int i = 0; i < SERVER_MAX_CLIENTS; i++) {
+		struct client *c = &L->srv.c[i];
+		if (c->fd < 0 || !(c->subs & kind) || c->closing)
+			continue;
+		if (!s) {
+			s = json_dumps(ev, JSON_COMPACT | JSON_REAL_PRECISION(17));
+			if (!s)
+				break;
+			len = strlen(s);
+			s[len++] = '\n'; /* replaces the NUL: s is no longer a string */
+		}
+		if (server_queue(&L->srv, i, s, len) < 0) {
+			fprintf(stderr, "postured: client %d does not read its events: dropped\n", i);
+			server_drop(&L->srv, i);
+		}
+	}
+	free(s);
+	json_decref(ev);
+}
+
+static void
+posture_event(struct loop *L, int fig)
+{
+	const struct env_figure *f = &L->d.env.fig[fig];
+	json_t *ev = json_object();
+	json_object_set_new(ev, "event", json_string("posture"));
+	json_object_set_new(ev, "frame", json_integer((json_int_t)L->d.stats.frame));
+	json_object_set_new(ev, "figure", json_string(f->name));
+	json_object_set_new(ev, "q", cmd_vec(f->state->q, f->model->ndof));
+	json_object_set_new(ev, "com", cmd_vec(f->state->com, 3));
+	send_event(L, SUB_POSTURE, ev);
+}
+
+/* why a goal is (not) reached: the solver's view of one figure's frame */
+static void
+telemetry_event(struct loop *L, int fig, const struct ik_result *r, uint64_t budget, double us)
+{
+	struct env *e = &L->d.env;
+	const struct env_figure *f = &e->fig[fig];
+	json_t *ev = json_object(), *cons = json_array();
+	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
+		const struct env_constraint *c = &e->con[i];
+		if (!c->gen || c->fig != fig)
+			continue;
+		double pe, oe;
+		ik_constraint_error(f->ik, f->model, f->state, env_solver_index(e, i), &pe, &oe);
+		json_t *o = json_object();
+		json_object_set_new(o, "name", json_string(c->name));
+		json_object_set_new(o, "enabled", json_boolean(c->def.enabled));
+		json_object_set_new(o, "pos_error", json_real(pe));
+		json_object_set_new(o, "ori_error", json_real(oe));
+		json_array_append_new(cons, o);
+	}
+	json_t *limits = json_array();
+	const struct model *m = f->model;
+	for (int d = 0; d < m->ndof; d++)
+		if (f->state->q[d] <= m->dof_lo[d] || f->state->q[d] >= m->dof_hi[d]) {
+			char name[MODEL_NAME_MAX + 8];
+			snprintf(name, sizeof name, "%s[%d]", m->jnt_name[m->dof_jnt[d]],
+				 d - m->jnt_dof0[m->dof_jnt[d]]);
+			json_array_append_new(limits, json_string(name));
+		}
+	json_object_set_new(ev, "event", json_string("telemetry"));
+	json_object_set_new(ev, "frame", json_integer((json_int_t)L->d.stats.frame));
+	json_object_set_new(ev, "figure", json_string(f->name));
+	json_object_set_new(ev, "budget_us", json_integer((json_int_t)budget));
+	json_object_set_new(ev, "used_us", json_real(us));
+	json_object_set_new(ev, "iterations", json_integer(r->iterations));
+	json_object_set_new(ev, "status", json_string(ik_status_to_str(r->status)));
+	json_object_set_new(ev, "time_limit_cut", json_boolean(r->status == IK_TIME_LIMIT));
+	json_object_set_new(ev, "step_factor_cut", json_boolean(r->stepped));
+	json_object_set_new(ev, "balance_rounds", json_integer(r->balance_rounds));
+	json_object_set_new(ev, "energy", json_real(r->f_end));
+	json_object_set_new(ev, "constraints", cons);
+	json_object_set_new(ev, "active_limits", limits);
+	send_event(L, SUB_TELEMETRY, ev);
+}
+
+/* ---- frames ------------------------------------------------------------------ */
+
+static int
+has_work(const struct env *e, int fig)
+{
+	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++)
+		if (e->con[i].gen && e->con[i].fig == fig && e->con[i].def.enabled)
+			return 1;
+	return 0;
+}
+
+/* one frame: solve every figure with work within the budget */
+static int
+frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *changed)
+{
+	struct env *e = &L->d.env;
+	int busy = 0;
+	*changed = 0;
+	for (int i = 0; i < ENV_MAX_FIGURES; i++)
+		busy += e->fig[i].gen && has_work(e, i);
+	L->d.stats.ik_us = 0;
+	L->d.stats.iterations = 0;
+	L->d.stats.time_cut = L->d.stats.step_cut = 0;
+	L->d.stats.budget_us = budget_us;
+	for (int i = 0; i < ENV_MAX_FIGURES && busy; i++) {
+		struct env_figure *f = &e->fig[i];
+		if (!f->gen || !has_work(e, i))
+			continue;
+		env_sync_solver(e, i);
+		uint64_t before = state_hash(f->model, f->state);
+		struct ik_options opt = ik_default_options();
+		opt.budget_us = budget_us / (uint64_t)busy; /* an equal share each */
+		uint64_t t0 = real_now(NULL);
+		struct ik_result r = ik_solve(f->ik, f->model, f->state, &opt, clock);
+		double us = (double)(real_now(NULL) - t0);
+		L->d.stats.ik_us += us;
+		L->d.stats.iterations += r.iterations;
+		L->d.stats.time_cut |= r.status == IK_TIME_LIMIT;
+		L->d.stats.step_cut |= r.stepped;
+		int moved = state_hash(f->model, f->state) != before;
+		*changed |= moved;
+		if (moved)
+			posture_event(L, i);
+		telemetry_event(L, i, &r, opt.budget_us, us);
+	}
+	L->d.stats.frame++;
+	return 0;
+}
+
+static int
+settle_frame(struct daemon *d, int *changed)
+{
+	struct loop *L = d->loop;
+	struct ik_clock clock = { virtual_now, L };
+	return frame(L, &clock, L->period_us, changed);
+}
+
+static int
+subscribe(struct daemon *d, int client, unsigned kinds, int on)
+{
+	struct loop *L = d->loop;
+	if (client < 0 || client >= SERVER_MAX_CLIENTS || L->srv.c[client].fd < 0)
+		return -1;
+	if (on)
+		L->srv.c[client].subs |= kinds;
+	else
+		L->srv.c[client].subs &= ~kinds;
+	return 0;
+}
+
+/* ---- requests ---------------------------------------------------------------- */
+
+static void
+reply(struct loop *L, int i, const char *json)
+{
+	size_t n = strlen(json);
+	char *line = malloc(n + 1);
+	if (!line)
+		return;
+	memcpy(line, json, n);
+	line[n] = '\n';
+	if (server_queue(&L->srv, i, line, n + 1) < 0) {
+		fprintf(stderr, "postured: client %d does not read its replies: dropped\n", i);
+		server_drop(&L->srv, i);
+	}
+	free(line);
+}
+
+static void
+error_reply(struct loop *L, int i, const char *code, const char *msg)
+{
+	char buf[256];
+	snprintf(buf, sizeof buf, "{\"ok\":false,\"error\":{\"code\":\"%s\",\"message\":\"%s\"}}", code,
+		 msg);
+	reply(L, i, buf);
+}
+
+/* runs one request line of client i */
+static void
+request(struct loop *L, int i, const char *line, size_t len)
+{
+	struct client *c = &L->srv.c[i];
+	if (!c->authed) { /* TCP: the first line must carry the token */
+		size_t tl = strlen(L->srv.token);
+		int good = len == 5 + tl && !memcmp(line, "auth ", 5) && !memcmp(line + 5, L->srv.token, tl);
+		if (good) {
+			c->authed = 1;
+			reply(L, i, "{\"ok\":true,\"result\":{}}");
+		} else {
+			error_reply(L, i, "denied", "the first line must be: auth TOKEN");
+			c->closing = 1;
+		}
+		return;
+	}
+	/* what the solver did since the last reply is made durable first */
+	if (journal_postures(&L->j, &L->d) < 0)
+		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	struct cmd_outcome out;
+	cmd_run(&L->d, i, line, len, &out);
+	/* a change is replayed from its command; frames a command ran (settle)
+	 * are recorded as the postures they reached */
+	int rc = out.mutated ? journal_command(&L->j, &L->d, line, len)
+			     : journal_postures(&L->j, &L->d);
+	if (rc < 0)
+		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	if (out.reply && out.json)
+		reply(L, i, out.json);
+	free(out.json);
+	if (out.close && L->srv.c[i].fd >= 0)
+		L->srv.c[i].closing = 1;
+}
+
+static void
+client_input(struct loop *L, int i)
+{
+	long got = server_read(&L->srv, i);
+	if (got <= 0) { /* the peer left (a half line is simply dropped) */
+		server_drop(&L->srv, i);
+		return;
+	}
+	struct client *c = &L->srv.c[i];
+	size_t len, used;
+	const char *line;
+	while (c->fd >= 0 && !c->closing && (line = server_line(c, &len, &used))) {
+		request(L, i, line, len);
+		if (c->fd >= 0)
+			server_consume(c, used);
+	}
+	if (c->fd >= 0 && !c->closing && c->in_len == SERVER_IN_MAX) {
+		error_reply(L, i, "too-long", "line longer than 65536 bytes");
+		c->closing = 1;
+	}
+}
+
+/* ---- the loop ---------------------------------------------------------------- */
+
+/* a first start: the init file's commands, journaled like a client's */
+static int
+run_init(struct loop *L, const char *path)
+{
+	FILE *f = fopen(path, "r");
+	if (!f) {
+		fprintf(stderr, "postured: %s: %s\n", path, strerror(errno));
+		return -1;
+	}
+	char line[4096];
+	int n = 0, rc = 0;
+	while (rc == 0 && fgets(line, sizeof line, f)) {
+		n++;
+		size_t len = strcspn(line, "\r\n");
+		struct cmd_outcome out;
+		cmd_run(&L->d, -1, line, len, &out);
+		if (out.reply && !out.ok) {
+			fprintf(stderr, "postured: %s:%d: %s\n", path, n, out.json ? out.json : "");
+			rc = -1;
+		} else if (out.mutated && journal_command(&L->j, &L->d, line, len) < 0) {
+			rc = -1;
+		}
+		free(out.json);
+	}
+	fclose(f);
+	return rc == 0 ? journal_sync(&L->j) : -1;
+}
+
+static int
+open_signals(void)
+{
+	sigset_t set;
+	sigemptyset(&set);
+	sigaddset(&set, SIGTERM);
+	sigaddset(&set, SIGINT);
+	signal(SIGPIPE, SIG_IGN);
+	if (sigprocmask(SIG_BLOCK, &set, NULL) < 0)
+		return -1;
+	return signalfd(-1, &set, SFD_NONBLOCK | SFD_CLOEXEC);
+}
+
+static void
+live_frame(struct loop *L)
+{
+	struct ik_clock clock = { real_now, NULL };
+	int changed;
+	uint64_t draw = (uint64_t)L->d.stats.draw_us;
+	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
+	frame(L, &clock, budget, &changed);
+	uint64_t now = real_now(NULL);
+	L->fps_frames++;
+	if (now - L->fps_t0 >= 1000000) {
+		L->d.stats.fps = (double)L->fps_frames * 1e6 / (double)(now - L->fps_t0);
+		L->fps_t0 = now;
+		L->fps_frames = 0;
+	}
+	if (L->watchdog_us && now - L->watchdog_last >= L->watchdog_us / 2) {
+		notify_send("WATCHDOG=1");
+		L->watchdog_last = now;
+	}
+}
+
+int
+loop_run(const struct loop_config *cfg)
+{
+	struct loop *L = calloc(1, sizeof *L);
+	char err[512];
+	if (!L)
+		return 1;
+	env_init(&L->d.env);
+	snprintf(L->d.state_dir, sizeof L->d.state_dir, "%s", cfg->state_dir);
+	L->d.loop = L;
+	L->d.run_frame = settle_frame;
+	L->d.subscribe = subscribe;
+	L->period_us = (uint64_t)(1e6 / cfg->fps);
+	L->srv.unix_fd = L->srv.tcp_fd = -1;
+	int status = 1;
+	if (journal_open(&L->j, &L->d, err, sizeof err) < 0) {
+		fprintf(stderr, "postured: cannot recover the state: %s\n", err);
+		goto out;
+	}
+	fprintf(stderr, "postured: state recovered: %d figures, journal at record %" PRIu64 "\n",
+		env_count(&L->d.env), L->j.seq);
+	if (cfg->init_file && env_count(&L->d.env) == 0 && L->j.seq == 0 && run_init(L, cfg->init_file) < 0)
+		goto out;
+	L->synced_seq = L->j.seq;
+	if (server_open(&L->srv, cfg->socket_path, cfg->tcp_port, cfg->token, err, sizeof err) < 0) {
+		fprintf(stderr, "postured: %s\n", err);
+		goto out;
+	}
+	if ((L->sig_fd = open_signals()) < 0) {
+		fprintf(stderr, "postured: signals: %s\n", strerror(errno));
+		goto out;
+	}
+	L->watchdog_us = notify_watchdog_usec();
+	L->fps_t0 = real_now(NULL);
+	notify_send("READY=1");
+	fprintf(stderr, "postured: listening on %s%s\n", cfg->socket_path,
+		cfg->tcp_port > 0 ? " and 127.0.0.1 (token required)" : "");
+	static struct pollfd fds[SERVER_MAX_CLIENTS + 3];
+	static int owner[SERVER_MAX_CLIENTS + 3];
+	uint64_t next = real_now(NULL) + L->period_us;
+	while (!L->stop) {
+		int n = server_pollfds(&L->srv, fds, owner);
+		fds[n] = (struct pollfd){ .fd = L->sig_fd, .events = POLLIN };
+		owner[n++] = -3;
+		uint64_t now = real_now(NULL);
+		int timeout = now >= next ? 0 : (int)((next - now + 999) / 1000);
+		if (poll(fds, (nfds_t)n, timeout) < 0 && errno != EINTR) {
+			fprintf(stderr, "postured: poll: %s\n", strerror(errno));
+			break;
+		}
+		for (int k = 0; k < n; k++) {
+			if (!fds[k].revents)
+				continue;
+			if (owner[k] == -3)
+				L->stop = 1;
+			else if (owner[k] < 0)
+				server_accept(&L->srv, fds[k].fd);
+			else if (L->srv.c[owner[k]].fd == fds[k].fd &&
+				 (fds[k].revents & (POLLIN | POLLHUP | POLLERR)))
+				client_input(L, owner[k]);
+		}
+		if (real_now(NULL) >= next) {
+			live_frame(L);
+			next += L->period_us;
+			if (next < real_now(NULL)) /* fell behind: do not try to catch up */
+				next = real_now(NULL) + L->period_us;
+		}
+		/* replies leave only after what they acknowledge is on disk */
+		if (L->j.seq != L->synced_seq) {
+			if (journal_sync(&L->j) < 0)
+				fprintf(stderr, "postured: journal sync: %s\n", strerror(errno));
+			if (cfg->init_file && env_count(&L->d.env) == 0 && L->j.seq == 0 && run_init(L, cfg->init_file) < 0)
+		goto out;
+	L->synced_seq = L->j.seq;
+			if (journal_snapshot(&L->j, &L->d, 0) < 0)
+				fprintf(stderr, "postured: snapshot: %s\n", strerror(errno));
+		}
+		L->d.stats.clients = L->srv.nclients;
+		for (int i = 0; i < SERVER_MAX_CLIENTS; i++)
+			if (L->srv.c[i].fd >= 0)
+				server_flush(&L->srv, i);
+	}
+	fprintf(stderr, "postured: stopping\n");
+	notify_send("STOPPING=1");
+	/* what the solver did last, then a snapshot: a clean start next time */
+	journal_postures(&L->j, &L->d);
+	journal_sync(&L->j);
+	if (journal_snapshot(&L->j, &L->d, 1) < 0)
+		fprintf(stderr, "postured: final snapshot: %s\n", strerror(errno));
+	status = 0;
+out:
+	server_close(&L->srv);
+	journal_close(&L->j);
+	env_clear(&L->d.env);
+	daemon_checkpoints_clear(&L->d.undo);
+	daemon_checkpoints_clear(&L->d.redo);
+	free(L);
+	return status;
+}

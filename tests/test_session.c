@@ -1,0 +1,190 @@
+/* test_session.c - request words, numbers with units, session and posture text */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "kin.h"
+#include "session.h"
+#include "words.h"
+
+static void
+test_words_split_quotes_tags_and_limits(void **unused)
+{
+	(void)unused;
+	static struct words w;
+	const char *msg;
+	const char *line = "#t9  set joint \"a b\" 30deg  \"x\\\"y\"";
+	assert_int_equal(words_split(line, strlen(line), &w, &msg), WORDS_OK);
+	assert_string_equal(w.tag, "t9");
+	assert_int_equal(w.n, 5);
+	assert_string_equal(w.w[2], "a b");
+	assert_string_equal(w.w[4], "x\"y");
+	assert_int_equal(words_split("  % a comment", 13, &w, &msg), WORDS_EMPTY);
+	assert_int_equal(words_split("   ", 3, &w, &msg), WORDS_EMPTY);
+	assert_int_equal(words_split("set \"open", 9, &w, &msg), WORDS_PARSE);
+	assert_int_equal(words_split("# x", 3, &w, &msg), WORDS_PARSE);
+	char many[400] = "";
+	for (int i = 0; i < 65; i++)
+		strcat(many, "w ");
+	assert_int_equal(words_split(many, strlen(many), &w, &msg), WORDS_TOO_MANY);
+}
+
+static void
+test_numbers_take_units_and_refuse_non_finite(void **unused)
+{
+	(void)unused;
+	double v;
+	assert_int_equal(words_number("30deg", UNIT_ANGLE, &v), 0);
+	assert_float_equal(v, M_PI / 6, 1e-15);
+	assert_int_equal(words_number("12cm", UNIT_LENGTH, &v), 0);
+	assert_float_equal(v, 0.12, 1e-15);
+	assert_int_equal(words_number("-2.5e-1", UNIT_NONE, &v), 0);
+	assert_float_equal(v, -0.25, 0);
+	const char *bad[] = { "nan", "inf", "-inf", "1e999", "0x10", "30deg", "", "1.2.3", "5kg", "deg" };
+	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
+		assert_int_equal(words_number(bad[i], i == 5 ? UNIT_LENGTH : UNIT_NONE, &v), -1);
+	double l[3];
+	assert_int_equal(words_list("1,2cm,3mm", UNIT_LENGTH, 3, l), 0);
+	assert_float_equal(l[1], 0.02, 1e-15);
+	assert_int_equal(words_list("1,2", UNIT_LENGTH, 3, l), -1);
+	assert_int_equal(words_list("1,2,3,4", UNIT_LENGTH, 3, l), -1);
+	assert_int_equal(words_list("1,,3", UNIT_LENGTH, 3, l), -1);
+}
+
+/* an environment with a posed, re-rooted human and constraints */
+static void
+populate(struct env *e)
+{
+	char err[200];
+	struct human_def hd = human_default_def(HUMAN_FEMALE);
+	struct model *m = human_build(&hd, err, sizeof err);
+	int f = env_add_figure(e, m, "eve", 1, &hd, NULL);
+	assert_true(f >= 0);
+	struct env_figure *fg = &e->fig[f];
+	srand(4);
+	for (int d = 0; d < m->ndof; d++)
+		fg->state->q[d] = m->dof_lo[d] + (m->dof_hi[d] - m->dof_lo[d]) * rand() / RAND_MAX;
+	kin_update(m, fg->state);
+	state_set_root(m, fg->state, model_find_site(m, "foot_l.balance"));
+	struct ik_constraint_def c = ik_constraint_default_def();
+	c.effector_site = model_find_site(m, "hand_r.palm");
+	c.goal_xf.p[0] = 0.123456789012345678;
+	c.ori = IK_FRAME;
+	c.pos_weight = 0.3;
+	c.start_joint = model_find_joint(m, "clavicle_r");
+	c.group = 1;
+	assert_true(env_add_constraint(e, f, "reach", &c) >= 0);
+	c.enabled = 0;
+	c.goal_site = model_find_site(m, "shank_l.knee");
+	assert_true(env_add_constraint(e, f, NULL, &c) >= 0);
+}
+
+static void
+test_session_round_trip_is_exact(void **unused)
+{
+	(void)unused;
+	static struct env a, b;
+	env_init(&a);
+	env_init(&b);
+	populate(&a);
+	size_t la, lb;
+	char *ta = session_to_string(&a, &la), err[300];
+	assert_non_null(ta);
+	assert_int_equal(session_read(ta, la, ".", &b, err, sizeof err), 0);
+	char *tb = session_to_string(&b, &lb);
+	assert_int_equal(la, lb);
+	assert_memory_equal(ta, tb, la);
+	/* the posture itself, to the bit, and the ids */
+	assert_true(state_hash(a.fig[0].model, a.fig[0].state) ==
+		    state_hash(b.fig[0].model, b.fig[0].state));
+	assert_int_equal(env_find_constraint(&b, "reach"), env_find_constraint(&a, "reach"));
+	char ida[32], idb[32];
+	env_constraint_id(&a, 0, ida);
+	env_constraint_id(&b, 0, idb);
+	assert_string_equal(ida, idb);
+	free(ta);
+	free(tb);
+	env_clear(&a);
+	env_clear(&b);
+}
+
+static void
+test_bad_sessions_load_nothing(void **unused)
+{
+	(void)unused;
+	static struct env e, good;
+	env_init(&good);
+	populate(&good);
+	size_t len;
+	char *text = session_to_string(&good, &len), err[300];
+	const char *cuts[] = { "session 2\n", "sesion 1\nend\n", "session 1\nfigure x slot=0 gen=1 robot\nend\n",
+			       "session 1\nq nobody 1,2\nend\n" };
+	for (size_t i = 0; i < sizeof cuts / sizeof *cuts; i++) {
+		env_init(&e);
+		assert_int_equal(session_read(cuts[i], strlen(cuts[i]), ".", &e, err, sizeof err), -1);
+		assert_int_equal(env_count(&e), 0);
+		assert_non_null(strstr(err, "line "));
+	}
+	/* truncated anywhere before "end": refused whole */
+	for (size_t cut = 10; cut + 5 < len; cut += len / 7) {
+		env_init(&e);
+		assert_int_equal(session_read(text, cut, ".", &e, err, sizeof err), -1);
+		assert_int_equal(env_count(&e), 0);
+	}
+	/* a value outside its limit */
+	char *q = strstr(text, "\nq eve ");
+	assert_non_null(q);
+	char *broken = strdup(text);
+	memcpy(broken + (q - text) + 7, "99", 2);
+	env_init(&e);
+	assert_int_equal(session_read(broken, len, ".", &e, err, sizeof err), -1);
+	free(broken);
+	free(text);
+	env_clear(&good);
+}
+
+static void
+test_posture_file_applies_by_name_and_checks_first(void **unused)
+{
+	(void)unused;
+	static struct env e;
+	env_init(&e);
+	populate(&e);
+	char *buf = NULL, err[300];
+	size_t len = 0;
+	FILE *f = open_memstream(&buf, &len);
+	session_write_posture(&e, 0, f);
+	fclose(f);
+	struct env_figure *fg = &e.fig[0];
+	uint64_t h = state_hash(fg->model, fg->state);
+	state_reset(fg->model, fg->state);
+	assert_int_equal(session_read_posture(&e, 0, buf, len, err, sizeof err), 0);
+	assert_true(state_hash(fg->model, fg->state) == h);
+	/* an unknown joint changes nothing */
+	const char *bad = "posture 1\njoint knee_l 0.1\njoint nojoint 1\nend\n";
+	state_reset(fg->model, fg->state);
+	uint64_t h0 = state_hash(fg->model, fg->state);
+	assert_int_equal(session_read_posture(&e, 0, bad, strlen(bad), err, sizeof err), -1);
+	assert_true(state_hash(fg->model, fg->state) == h0);
+	free(buf);
+	env_clear(&e);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_words_split_quotes_tags_and_limits),
+		cmocka_unit_test(test_numbers_take_units_and_refuse_non_finite),
+		cmocka_unit_test(test_session_round_trip_is_exact),
+		cmocka_unit_test(test_bad_sessions_load_nothing),
+		cmocka_unit_test(test_posture_file_applies_by_name_and_checks_first),
+	};
+	return cmocka_run_group_tests_name("session", tests, NULL, NULL);
+}
