@@ -799,3 +799,25 @@ ik_constraint_error(const struct ik *ik, const struct model *m, const struct sta
 	*pos_err = tmp.pos_err;
 	*ori_err = tmp.ori_err;
 }
+
+int
+ik_active_limits(const struct ik *ik, const struct model *m, const struct state *s, int *dest,
+		 int max)
+{
+	int n = 0;
+	for (int d = 0; d < m->ndof && n < max; d++) {
+		if (s->q[d] > m->dof_lo[d] && s->q[d] < m->dof_hi[d])
+			continue;
+		/* only the variables of chains as they stand now */
+		int var = 0;
+		for (int g = 0; g < IK_MAX_GROUPS && !var; g++) {
+			const struct ik_chain *ch = &ik->chain[g];
+			var = ch->valid && ch->gen == ik->gen && ch->root_site == s->root_site &&
+			      ch->dof_var[d] >= 0 && ch->dof_var[d] < ch->nvar &&
+			      ch->var_dof[ch->dof_var[d]] == d;
+		}
+		if (var)
+			dest[n++] = d;
+	}
+	return n;
+}

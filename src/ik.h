@@ -155,6 +155,13 @@ int ik_set_spring(struct ik *ik, const struct model *m, int dof, int side, doubl
 struct ik_result ik_solve(struct ik *ik, const struct model *m, struct state *s,
 			  const struct ik_options *opt, const struct ik_clock *clock);
 
+/*
+ * The dofs the last solve moved that rest on a joint limit, in dof order,
+ * at most max of them into dest; returns the count.
+ */
+int ik_active_limits(const struct ik *ik, const struct model *m, const struct state *s, int *dest,
+		     int max);
+
 /* error of constraint c in the current state: metres and radians */
 void ik_constraint_error(const struct ik *ik, const struct model *m, const struct state *s, int c,
 			 double *pos_err, double *ori_err);

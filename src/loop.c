@@ -12,8 +12,11 @@
 #include <unistd.h>
 
 #include "cmd.h"
+#include "jbuf.h"
 #include "kin.h"
 #include "notify.h"
+
+#define IK_LIMITS_REPORTED 256 /* dofs listed as resting on a limit */
 
 struct loop {
 	struct daemon d;
@@ -25,6 +28,8 @@ struct loop {
 	uint64_t virtual_us;  /* the clock of settle's frames */
 	uint64_t fps_t0, fps_frames;
 	uint64_t watchdog_us, watchdog_last;
+	struct jbuf ev; /* events are written here: no allocation in a frame */
+	int limit_dofs[IK_LIMITS_REPORTED];
 	int stop;
 };
 
@@ -47,87 +52,126 @@ virtual_now(void *ctx)
 
 /* ---- events ------------------------------------------------------------------ */
 
-static void
-send_event(struct loop *L, unsigned kind, json_t *ev)
+static int
+has_subscribers(const struct loop *L, unsigned kind)
 {
-	char *s = NULL;
-	size_t len = 0;
+	for (int i = 0; i < SERVER_MAX_CLIENTS; i++)
+		if (L->srv.c[i].fd >= 0 && (L->srv.c[i].subs & kind) && !L->srv.c[i].closing)
+			return 1;
+	return 0;
+}
+
+/* queues the event in L->ev (a complete JSON object) to every subscriber of kind */
+static void
+send_event(struct loop *L, unsigned kind)
+{
+	if (L->ev.overflow) {
+		fprintf(stderr, "postured: an event did not fit its buffer; not sent\n");
+		return;
+	}
+	jbuf_raw(&L->ev, "\n");
 	for (int i = 0; i < SERVER_MAX_CLIENTS; i++) {
 		struct client *c = &L->srv.c[i];
 		if (c->fd < 0 || !(c->subs & kind) || c->closing)
 			continue;
-		if (!s) {
-			s = json_dumps(ev, JSON_COMPACT | JSON_REAL_PRECISION(17));
-			if (!s)
-				break;
-			len = strlen(s);
-			s[len++] = '\n'; /* replaces the NUL: s is no longer a string */
-		}
-		if (server_queue(&L->srv, i, s, len) < 0) {
+		if (server_queue(&L->srv, i, L->ev.buf, L->ev.len) < 0) {
 			fprintf(stderr, "postured: client %d does not read its events: dropped\n", i);
 			server_drop(&L->srv, i);
 		}
 	}
-	free(s);
-	json_decref(ev);
 }
 
 static void
 posture_event(struct loop *L, int fig)
 {
+	if (!has_subscribers(L, SUB_POSTURE))
+		return;
 	const struct env_figure *f = &L->d.env.fig[fig];
-	json_t *ev = json_object();
-	json_object_set_new(ev, "event", json_string("posture"));
-	json_object_set_new(ev, "frame", json_integer((json_int_t)L->d.stats.frame));
-	json_object_set_new(ev, "figure", json_string(f->name));
-	json_object_set_new(ev, "q", cmd_vec(f->state->q, f->model->ndof));
-	json_object_set_new(ev, "com", cmd_vec(f->state->com, 3));
-	send_event(L, SUB_POSTURE, ev);
+	struct jbuf *j = &L->ev;
+	jbuf_reset(j);
+	jbuf_raw(j, "{\"event\":\"posture\"");
+	jbuf_key(j, "frame", 0);
+	jbuf_int(j, (long long)L->d.stats.frame);
+	jbuf_key(j, "figure", 0);
+	jbuf_str(j, f->name);
+	jbuf_key(j, "q", 0);
+	jbuf_vec(j, f->state->q, f->model->ndof);
+	jbuf_key(j, "com", 0);
+	jbuf_vec(j, f->state->com, 3);
+	jbuf_raw(j, "}");
+	send_event(L, SUB_POSTURE);
 }
 
 /* why a goal is (not) reached: the solver's view of one figure's frame */
 static void
 telemetry_event(struct loop *L, int fig, const struct ik_result *r, uint64_t budget, double us)
 {
+	if (!has_subscribers(L, SUB_TELEMETRY))
+		return;
 	struct env *e = &L->d.env;
 	const struct env_figure *f = &e->fig[fig];
-	json_t *ev = json_object(), *cons = json_array();
+	const struct model *m = f->model;
+	struct jbuf *j = &L->ev;
+	jbuf_reset(j);
+	jbuf_raw(j, "{\"event\":\"telemetry\"");
+	jbuf_key(j, "frame", 0);
+	jbuf_int(j, (long long)L->d.stats.frame);
+	jbuf_key(j, "figure", 0);
+	jbuf_str(j, f->name);
+	jbuf_key(j, "budget_us", 0);
+	jbuf_int(j, (long long)budget);
+	jbuf_key(j, "used_us", 0);
+	jbuf_num(j, us);
+	jbuf_key(j, "iterations", 0);
+	jbuf_int(j, r->iterations);
+	jbuf_key(j, "status", 0);
+	jbuf_str(j, ik_status_to_str(r->status));
+	jbuf_key(j, "time_limit_cut", 0);
+	jbuf_bool(j, r->status == IK_TIME_LIMIT);
+	jbuf_key(j, "step_factor_cut", 0);
+	jbuf_bool(j, r->stepped);
+	jbuf_key(j, "balance_rounds", 0);
+	jbuf_int(j, r->balance_rounds);
+	jbuf_key(j, "energy", 0);
+	jbuf_num(j, r->f_end);
+	jbuf_key(j, "constraints", 0);
+	jbuf_raw(j, "[");
+	int first = 1;
 	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
 		const struct env_constraint *c = &e->con[i];
 		if (!c->gen || c->fig != fig)
 			continue;
 		double pe, oe;
-		ik_constraint_error(f->ik, f->model, f->state, env_solver_index(e, i), &pe, &oe);
-		json_t *o = json_object();
-		json_object_set_new(o, "name", json_string(c->name));
-		json_object_set_new(o, "enabled", json_boolean(c->def.enabled));
-		json_object_set_new(o, "pos_error", json_real(pe));
-		json_object_set_new(o, "ori_error", json_real(oe));
-		json_array_append_new(cons, o);
+		ik_constraint_error(f->ik, m, f->state, env_solver_index(e, i), &pe, &oe);
+		jbuf_raw(j, first ? "{" : ",{");
+		first = 0;
+		jbuf_key(j, "name", 1);
+		jbuf_str(j, c->name);
+		jbuf_key(j, "enabled", 0);
+		jbuf_bool(j, c->def.enabled);
+		jbuf_key(j, "pos_error", 0);
+		jbuf_num(j, pe);
+		jbuf_key(j, "ori_error", 0);
+		jbuf_num(j, oe);
+		jbuf_raw(j, "}");
 	}
-	json_t *limits = json_array();
-	const struct model *m = f->model;
-	for (int d = 0; d < m->ndof; d++)
-		if (f->state->q[d] <= m->dof_lo[d] || f->state->q[d] >= m->dof_hi[d]) {
-			char name[MODEL_NAME_MAX + 8];
-			snprintf(name, sizeof name, "%s[%d]", m->jnt_name[m->dof_jnt[d]],
-				 d - m->jnt_dof0[m->dof_jnt[d]]);
-			json_array_append_new(limits, json_string(name));
-		}
-	json_object_set_new(ev, "event", json_string("telemetry"));
-	json_object_set_new(ev, "frame", json_integer((json_int_t)L->d.stats.frame));
-	json_object_set_new(ev, "figure", json_string(f->name));
-	json_object_set_new(ev, "budget_us", json_integer((json_int_t)budget));
-	json_object_set_new(ev, "used_us", json_real(us));
-	json_object_set_new(ev, "iterations", json_integer(r->iterations));
-	json_object_set_new(ev, "status", json_string(ik_status_to_str(r->status)));
-	json_object_set_new(ev, "time_limit_cut", json_boolean(r->status == IK_TIME_LIMIT));
-	json_object_set_new(ev, "step_factor_cut", json_boolean(r->stepped));
-	json_object_set_new(ev, "balance_rounds", json_integer(r->balance_rounds));
-	json_object_set_new(ev, "energy", json_real(r->f_end));
-	json_object_set_new(ev, "constraints", cons);
-	json_object_set_new(ev, "active_limits", limits);
-	send_event(L, SUB_TELEMETRY, ev);
+	jbuf_raw(j, "]");
+	jbuf_key(j, "active_limits", 0);
+	jbuf_raw(j, "[");
+	int nlim = ik_active_limits(f->ik, m, f->state, L->limit_dofs, IK_LIMITS_REPORTED);
+	for (int k = 0; k < nlim; k++) {
+		int d = L->limit_dofs[k];
+		jbuf_raw(j, k ? ",{" : "{");
+		jbuf_key(j, "joint", 1);
+		jbuf_str(j, m->jnt_name[m->dof_jnt[d]]);
+		jbuf_key(j, "dof", 0);
+		jbuf_int(j, d - m->jnt_dof0[m->dof_jnt[d]]);
+		jbuf_key(j, "at", 0);
+		jbuf_str(j, f->state->q[d] <= m->dof_lo[d] ? "lower" : "upper");
+		jbuf_raw(j, "}");
+	}
+	jbuf_raw(j, "]}");
+	send_event(L, SUB_TELEMETRY);
 }
 
 /* ---- frames ------------------------------------------------------------------ */
@@ -363,6 +407,8 @@ loop_run(const struct loop_config *cfg)
 	L->period_us = (uint64_t)(1e6 / cfg->fps);
 	L->srv.unix_fd = L->srv.tcp_fd = -1;
 	int status = 1;
+	if (jbuf_init(&L->ev, 1u << 20) < 0)
+		goto out;
 	if (journal_open(&L->j, &L->d, err, sizeof err) < 0) {
 		fprintf(stderr, "postured: cannot recover the state: %s\n", err);
 		goto out;
@@ -444,6 +490,7 @@ out:
 	env_clear(&L->d.env);
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
+	jbuf_free(&L->ev);
 	free(L);
 	return status;
 }
