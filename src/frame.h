@@ -1,0 +1,34 @@
+/*
+ * frame.h - one finished frame, as the renderer hands it to the sinks.
+ *
+ * Pixels are 8-bit R, G, B, A in that byte order (straight, not premultiplied
+ * alpha), rows top to bottom, each row starting stride bytes after the
+ * previous one (stride >= 4 * width; the bytes past 4 * width are ignored).
+ * The frame does not own its pixels.
+ */
+#ifndef POSTURE_FRAME_H
+#define POSTURE_FRAME_H
+
+#include <stdint.h>
+
+struct frame {
+	int width, height; /* pixels */
+	int stride;	   /* bytes per row */
+	uint8_t *rgba;	   /* 8-bit R,G,B,A per pixel, rows top to bottom */
+	uint64_t seq;	   /* frame number */
+	uint64_t t_us;	   /* frame time, microseconds */
+};
+
+/* a w x h frame over buf with tightly packed rows (stride 4 * w), seq and time 0 */
+static inline void
+frame_init(struct frame *f, int w, int h, uint8_t *buf)
+{
+	f->width = w;
+	f->height = h;
+	f->stride = 4 * w;
+	f->rgba = buf;
+	f->seq = 0;
+	f->t_us = 0;
+}
+
+#endif
