@@ -97,7 +97,7 @@ $(VENV)/.installed: tests/requirements.txt | build/.deps-apt
 run: deps build/rel/bin/postured build/rel/bin/posture-figure
 	@mkdir -p build/run
 	build/rel/bin/postured --socket build/run/postured.sock --state-dir build/run/state \
-		--frames build/run/frames --init tools/kiosk.init
+		--frames build/run/frames --init tools/kiosk.init --library src/figures
 
 # ---- tests ---------------------------------------------------------------
 test: deps unit-test system-test

@@ -173,13 +173,28 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	out->json = dump_reply(rc == 0, w.tag, c.result, c.code ? c.code : "internal", c.msg);
 }
 
+/* a table cell: '|' would end the cell early in markdown */
+static void
+cell(FILE *f, const char *s)
+{
+	for (; *s; s++) {
+		if (*s == '|')
+			fputc('\\', f);
+		fputc(*s, f);
+	}
+}
+
 void
 cmd_print_table(FILE *f)
 {
 	fprintf(f, "| command | mutates | reply | what it does |\n|---|---|---|---|\n");
-	for (int i = 0; i < NCMD; i++)
-		fprintf(f, "| `%s` | %s | `%s` | %s |\n", table[i].usage,
-			table[i].flags & CMD_MUTATES ? "yes" : "", table[i].reply, table[i].summary);
+	for (int i = 0; i < NCMD; i++) {
+		fprintf(f, "| `");
+		cell(f, table[i].usage);
+		fprintf(f, "` | %s | `", table[i].flags & CMD_MUTATES ? "yes" : "");
+		cell(f, table[i].reply);
+		fprintf(f, "` | %s |\n", table[i].summary);
+	}
 }
 
 int

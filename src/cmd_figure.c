@@ -86,9 +86,17 @@ cmd_load_figure(struct cmd_ctx *c)
 		return cmd_fail(c, "arity", "load figure PATH [as NAME]");
 	if (c->argc == 3 && strcmp(c->argv[1], "as"))
 		return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[1]);
-	char full[4096], err[512];
-	if (cmd_path(c, c->argv[0], 0, full, sizeof full) < 0)
+	char full[8200], err[512];
+	const char *lib = !strncmp(c->argv[0], "lib:", 4) ? c->argv[0] + 4 : NULL;
+	if (lib) { /* a figure of the shipped library: a plain file name */
+		if (!c->d->library_dir[0])
+			return cmd_fail(c, "not-found", "this daemon has no figure library (--library)");
+		if (!lib[0] || strchr(lib, '/') || lib[0] == '.')
+			return cmd_fail(c, "denied", "lib: takes a file name of the library");
+		snprintf(full, sizeof full, "%s/%s", c->d->library_dir, lib);
+	} else if (cmd_path(c, c->argv[0], 0, full, sizeof full) < 0) {
 		return -1;
+	}
 	struct model *m = figure_read_file(full, err, sizeof err);
 	if (!m) {
 		/* the message names the file; give the path as the client wrote it */

@@ -88,7 +88,7 @@ replace_env(struct cmd_ctx *c, const char *text, size_t len, const char *what)
 		return cmd_fail(c, "internal", "out of memory");
 	env_init(fresh);
 	char err[300];
-	if (session_read(text, len, c->d->state_dir, fresh, err, sizeof err) < 0) {
+	if (session_read(text, len, c->d->state_dir, c->d->library_dir, fresh, err, sizeof err) < 0) {
 		free(fresh);
 		return cmd_fail(c, "bad-file", "%s: %s", what, err);
 	}

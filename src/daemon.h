@@ -41,6 +41,7 @@ enum sub_kind {
 struct daemon {
 	struct env env;
 	char state_dir[4096];
+	char library_dir[4096]; /* shipped figure files, named "lib:NAME"; empty: none */
 	struct checkpoints undo, redo;
 	struct daemon_stats stats;
 	/* the loop's services; NULL when absent (tools, tests) */

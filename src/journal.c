@@ -143,7 +143,8 @@ load_snapshot(struct journal *j, struct daemon *d, uint64_t *snap_seq, char *err
 	}
 	stop += 5;
 	char msg[300];
-	if (session_read(body, (size_t)(stop - body), d->state_dir, &d->env, msg, sizeof msg) < 0) {
+	if (session_read(body, (size_t)(stop - body), d->state_dir, d->library_dir, &d->env, msg,
+			 sizeof msg) < 0) {
 		free(text);
 		return say(err, errlen, "%s: %s", j->snap_path, msg);
 	}

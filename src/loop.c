@@ -401,6 +401,7 @@ loop_run(const struct loop_config *cfg)
 		return 1;
 	env_init(&L->d.env);
 	snprintf(L->d.state_dir, sizeof L->d.state_dir, "%s", cfg->state_dir);
+	snprintf(L->d.library_dir, sizeof L->d.library_dir, "%s", cfg->library_dir ? cfg->library_dir : "");
 	L->d.loop = L;
 	L->d.run_frame = settle_frame;
 	L->d.subscribe = subscribe;

@@ -18,6 +18,7 @@ struct loop_config {
 	int tcp_port;
 	const char *token;
 	const char *init_file; /* commands for a first start, NULL: none */
+	const char *library_dir; /* shipped figure files, NULL: none */
 };
 
 /* runs until SIGTERM or SIGINT; returns the process exit status */

@@ -25,6 +25,7 @@ static const char usage[] =
 	"  --tcp PORT         also listen on 127.0.0.1:PORT (needs --token)\n"
 	"  --token TOKEN      the token TCP clients must send first (auth TOKEN)\n"
 	"  --init FILE        commands to run when the state is empty (a first start)\n"
+	"  --library DIR      shipped figure files, loaded as 'load figure lib:NAME'\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
 	"  --protocol-table   print the command table of PROTOCOL.md and exit\n"
 	"  --help             this text\n"
@@ -33,7 +34,8 @@ static const char usage[] =
 	"Under systemd (Type=notify) it reports READY=1 when listening and pings the watchdog.\n";
 
 struct settings {
-	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], token[128];
+	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
+	char token[128];
 	double fps;
 	int tcp;
 };
@@ -48,6 +50,8 @@ set(struct settings *s, const char *key, const char *val)
 		snprintf(s->state_dir, sizeof s->state_dir, "%s", val);
 	else if (!strcmp(key, "frames"))
 		snprintf(s->frames, sizeof s->frames, "%s", val);
+	else if (!strcmp(key, "library"))
+		snprintf(s->library, sizeof s->library, "%s", val);
 	else if (!strcmp(key, "init"))
 		snprintf(s->init, sizeof s->init, "%s", val);
 	else if (!strcmp(key, "token"))
@@ -183,6 +187,7 @@ main(int argc, char **argv)
 	fprintf(stderr, "postured: socket %s, state %s, frames %s, %.0f fps%s\n", s.socket,
 		s.state_dir, s.frames[0] ? s.frames : "(none)", s.fps, s.tcp ? ", tcp on" : "");
 	struct loop_config cfg = { s.socket, s.state_dir, s.frames[0] ? s.frames : NULL, s.fps,
-				   s.tcp, s.token, s.init[0] ? s.init : NULL };
+				   s.tcp, s.token, s.init[0] ? s.init : NULL,
+				   s.library[0] ? s.library : NULL };
 	return loop_run(&cfg);
 }

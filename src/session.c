@@ -203,7 +203,7 @@ find_fig(struct env *e, const char *name)
 }
 
 static int
-read_figure(struct reader *r, struct env *e, const char *base_dir)
+read_figure(struct reader *r, struct env *e, const char *base_dir, const char *library_dir)
 {
 	struct words *w = &r->w;
 	unsigned long slot, gen;
@@ -228,8 +228,11 @@ read_figure(struct reader *r, struct env *e, const char *base_dir)
 		m = human_build(&hd, err, sizeof err);
 	} else if (!strcmp(w->w[4], "file") && w->n == 6) {
 		path = w->w[5];
-		char full[2 * ENV_PATH_MAX];
-		snprintf(full, sizeof full, "%s/%s", base_dir ? base_dir : ".", path);
+		char full[2 * ENV_PATH_MAX + 4200];
+		if (!strncmp(path, "lib:", 4))
+			snprintf(full, sizeof full, "%s/%s", library_dir ? library_dir : ".", path + 4);
+		else
+			snprintf(full, sizeof full, "%s/%s", base_dir ? base_dir : ".", path);
 		m = figure_read_file(full, err, sizeof err);
 	} else {
 		return fail(r, "a figure is 'human ...' or 'file PATH'");
@@ -345,8 +348,8 @@ read_constraint(struct reader *r, struct env *e)
 }
 
 int
-session_read(const char *text, size_t len, const char *base_dir, struct env *dest, char *err,
-	     size_t errlen)
+session_read(const char *text, size_t len, const char *base_dir, const char *library_dir,
+	     struct env *dest, char *err, size_t errlen)
 {
 	struct reader *r = malloc(sizeof *r);
 	if (!r) {
@@ -373,7 +376,7 @@ session_read(const char *text, size_t len, const char *base_dir, struct env *des
 		if (!strcmp(kw, "next_gen"))
 			ok = r->w.n == 2 && read_uint(r->w.w[1], 0xffffffffu, &next_gen) == 0 ? 0 : fail(r, "bad next_gen");
 		else if (!strcmp(kw, "figure"))
-			ok = read_figure(r, dest, base_dir);
+			ok = read_figure(r, dest, base_dir, library_dir);
 		else if (!strcmp(kw, "root"))
 			ok = read_root(r, dest);
 		else if (!strcmp(kw, "q"))

@@ -20,11 +20,12 @@ int session_write(const struct env *e, FILE *f);
 
 /*
  * Reads an environment from text into dest (which must be initialised and
- * empty). Figure files are read relative to base_dir. On error returns -1
- * with "line N: ..." in err and leaves dest empty.
+ * empty). Figure files are read relative to base_dir, "lib:NAME" ones from
+ * library_dir. On error returns -1 with "line N: ..." in err and leaves
+ * dest empty.
  */
-int session_read(const char *text, size_t len, const char *base_dir, struct env *dest, char *err,
-		 size_t errlen);
+int session_read(const char *text, size_t len, const char *base_dir, const char *library_dir,
+		 struct env *dest, char *err, size_t errlen);
 
 /* a figure's posture: root and every joint value */
 int session_write_posture(const struct env *e, int fig, FILE *f);

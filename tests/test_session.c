@@ -96,7 +96,7 @@ test_session_round_trip_is_exact(void **unused)
 	size_t la, lb;
 	char *ta = session_to_string(&a, &la), err[300];
 	assert_non_null(ta);
-	assert_int_equal(session_read(ta, la, ".", &b, err, sizeof err), 0);
+	assert_int_equal(session_read(ta, la, ".", NULL, &b, err, sizeof err), 0);
 	char *tb = session_to_string(&b, &lb);
 	assert_int_equal(la, lb);
 	assert_memory_equal(ta, tb, la);
@@ -127,14 +127,14 @@ test_bad_sessions_load_nothing(void **unused)
 			       "session 1\nq nobody 1,2\nend\n" };
 	for (size_t i = 0; i < sizeof cuts / sizeof *cuts; i++) {
 		env_init(&e);
-		assert_int_equal(session_read(cuts[i], strlen(cuts[i]), ".", &e, err, sizeof err), -1);
+		assert_int_equal(session_read(cuts[i], strlen(cuts[i]), ".", NULL, &e, err, sizeof err), -1);
 		assert_int_equal(env_count(&e), 0);
 		assert_non_null(strstr(err, "line "));
 	}
 	/* truncated anywhere before "end": refused whole */
 	for (size_t cut = 10; cut + 5 < len; cut += len / 7) {
 		env_init(&e);
-		assert_int_equal(session_read(text, cut, ".", &e, err, sizeof err), -1);
+		assert_int_equal(session_read(text, cut, ".", NULL, &e, err, sizeof err), -1);
 		assert_int_equal(env_count(&e), 0);
 	}
 	/* a value outside its limit */
@@ -143,7 +143,7 @@ test_bad_sessions_load_nothing(void **unused)
 	char *broken = strdup(text);
 	memcpy(broken + (q - text) + 7, "99", 2);
 	env_init(&e);
-	assert_int_equal(session_read(broken, len, ".", &e, err, sizeof err), -1);
+	assert_int_equal(session_read(broken, len, ".", NULL, &e, err, sizeof err), -1);
 	free(broken);
 	free(text);
 	env_clear(&good);
