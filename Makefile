@@ -104,7 +104,8 @@ test: deps unit-test system-test
 
 unit-test: $(rel_TESTS) $(san_TESTS) $(rel_TOOLS)
 	@set -e; for t in $(rel_TESTS) $(san_TESTS); do \
-		echo "== $$t"; ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 $$t; \
+		echo "== $$t"; ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+			LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $$t; \
 	done
 
 system-test: $(rel_TOOLS) | deps
