@@ -139,6 +139,11 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	case WORDS_OK:
 		break;
 	}
+	for (int i = 0; i < w.n; i++)
+		if (w.w[i][0] == '=') {
+			out->json = dump_reply(0, w.tag, NULL, "parse", "an argument with an empty key");
+			return;
+		}
 	int first = 1;
 	const struct cmd_entry *e = lookup(&c, &w, &first);
 	if (!e) {
@@ -216,7 +221,7 @@ cmd_help(struct cmd_ctx *c)
 	}
 	if (!json_array_size(list)) {
 		json_decref(list);
-		return cmd_fail(c, "not-found", "no command '%.60s'", c->argv[0]);
+		return cmd_fail(c, "unknown-command", "no command '%.60s'", c->argv[0]);
 	}
 	json_object_set_new(c->result, "commands", list);
 	return 0;

@@ -73,13 +73,17 @@ cmd_add_constraint(struct cmd_ctx *c)
 	d.ori = (enum ik_ori)o;
 	d.pos_weight = o == IK_ORI_NONE ? 1 : p == IK_POS_NONE ? 0 : 0.5;
 	const char *w = cmd_key(c, "weight"), *pw = cmd_key(c, "posweight"), *g = cmd_key(c, "group");
-	if (w && (words_number(w, UNIT_NONE, &d.weight) < 0 || d.weight < 0))
-		return cmd_fail(c, "bad-number", "weight: a number >= 0");
-	if (pw && (words_number(pw, UNIT_NONE, &d.pos_weight) < 0 || d.pos_weight < 0 || d.pos_weight > 1))
-		return cmd_fail(c, "bad-number", "posweight: a number from 0 to 1");
-	double gv;
-	if (g && (words_number(g, UNIT_NONE, &gv) < 0 || gv != (int)gv || gv < 0 || gv > 3))
-		return cmd_fail(c, "bad-number", "group: 0, 1, 2 or 3");
+	double gv = 0;
+	if ((w && words_number(w, UNIT_NONE, &d.weight) < 0) ||
+	    (pw && words_number(pw, UNIT_NONE, &d.pos_weight) < 0) ||
+	    (g && words_number(g, UNIT_NONE, &gv) < 0))
+		return cmd_fail(c, "bad-number", "weight, posweight and group are numbers");
+	if (d.weight < 0)
+		return cmd_fail(c, "bad-argument", "weight: a number >= 0");
+	if (d.pos_weight < 0 || d.pos_weight > 1)
+		return cmd_fail(c, "bad-argument", "posweight: a number from 0 to 1");
+	if (gv != (int)gv || gv < 0 || gv > 3)
+		return cmd_fail(c, "bad-argument", "group: 0, 1, 2 or 3");
 	d.group = g ? (int)gv : 0;
 	const char *start = cmd_key(c, "start"), *com = cmd_key(c, "com");
 	if (start && (d.start_joint = model_find_joint(m, start)) < 0)

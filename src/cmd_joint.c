@@ -1,4 +1,5 @@
 /* cmd_joint.c - joint values, sites, the root and the figure's place */
+#include <stdio.h>
 #include <string.h>
 
 #include "cmd.h"
@@ -35,6 +36,14 @@ cmd_get_joint(struct cmd_ctx *c)
 	json_object_set_new(c->result, "values", cmd_vec(&f->state->q[d0], n));
 	json_object_set_new(c->result, "lower", cmd_vec(&f->model->dof_lo[d0], n));
 	json_object_set_new(c->result, "upper", cmd_vec(&f->model->dof_hi[d0], n));
+	json_t *types = json_array();
+	for (int d = d0; d < d0 + n; d++) {
+		char t[8];
+		snprintf(t, sizeof t, "%c(%s%c)", f->model->dof_kind[d] == DOF_ROTATION ? 'R' : 'T',
+			 f->model->dof_sign[d] < 0 ? "-" : "", "xyz"[f->model->dof_axis[d]]);
+		json_array_append_new(types, json_string(t));
+	}
+	json_object_set_new(c->result, "types", types);
 	return 0;
 }
 

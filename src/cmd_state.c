@@ -128,6 +128,7 @@ step_history(struct cmd_ctx *c, struct checkpoints *from, struct checkpoints *to
 	free(from->text[top]);
 	from->n--;
 	daemon_checkpoints_push(to, now, now_len);
+	json_object_set_new(c->result, from == &c->d->undo ? "undone" : "redone", json_true());
 	json_object_set_new(c->result, "remaining", json_integer(from->n));
 	return 0;
 }
@@ -151,9 +152,10 @@ cmd_settle(struct cmd_ctx *c)
 	const char *f = cmd_key(c, "frames");
 	if (c->argc && !f)
 		return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[0]);
-	if (f && (words_number(f, UNIT_NONE, &frames) < 0 || frames != (int)frames || frames < 1 ||
-		  frames > 100000))
-		return cmd_fail(c, "bad-number", "frames: a whole number from 1 to 100000");
+	if (f && words_number(f, UNIT_NONE, &frames) < 0)
+		return cmd_fail(c, "bad-number", "frames: a whole number");
+	if (frames != (int)frames || frames < 1 || frames > 100000)
+		return cmd_fail(c, "bad-argument", "frames: a whole number from 1 to 100000");
 	if (!c->d->run_frame)
 		return cmd_fail(c, "internal", "no frame loop to settle with");
 	int n = 0, changed = 1;
@@ -165,6 +167,24 @@ cmd_settle(struct cmd_ctx *c)
 	}
 	json_object_set_new(c->result, "frames", json_integer(n));
 	json_object_set_new(c->result, "settled", json_boolean(!changed));
+	/* where every constraint stands: metres and radians from its goal */
+	struct env *e = &c->d->env;
+	json_t *res = json_array();
+	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
+		struct env_constraint *k = &e->con[i];
+		if (!k->gen)
+			continue;
+		struct env_figure *fg = &e->fig[k->fig];
+		env_sync_solver(e, k->fig);
+		double pe, oe;
+		ik_constraint_error(fg->ik, fg->model, fg->state, env_solver_index(e, i), &pe, &oe);
+		json_t *o = json_object();
+		json_object_set_new(o, "name", json_string(k->name));
+		json_object_set_new(o, "pos_error", json_real(pe));
+		json_object_set_new(o, "ori_error", json_real(oe));
+		json_array_append_new(res, o);
+	}
+	json_object_set_new(c->result, "residuals", res);
 	return 0;
 }
 

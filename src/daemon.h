@@ -9,8 +9,11 @@
 #include <stdint.h>
 
 #include "env.h"
+#include "frame.h"
 
 #define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
+#define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
+#define VIEW_MAX_H 1200
 
 /* a bounded stack of session texts */
 struct checkpoints {
@@ -48,6 +51,10 @@ struct daemon {
 	void *loop;
 	int (*run_frame)(struct daemon *d, int *changed); /* one frame with a virtual clock */
 	int (*subscribe)(struct daemon *d, int client, unsigned kinds, int on);
+	/* renders view v now; the frame stays valid until the next rendering */
+	int (*render_view)(struct daemon *d, int v, const struct frame **dest, char *err,
+			   size_t errlen);
+	char message[256]; /* the message line under the pictures (§1.7) */
 };
 
 /* frees the undo and redo texts */

@@ -28,6 +28,7 @@ env_clear(struct env *e)
 		if (e->fig[i].gen)
 			free_figure(&e->fig[i]);
 	memset(e->con, 0, sizeof e->con);
+	memset(e->view, 0, sizeof e->view);
 }
 
 static int
@@ -112,7 +113,9 @@ parse_id(const char *ref, char prefix, int nslots, const uint32_t *gens, size_t 
 	if (end == g || *end || g[0] == '-')
 		return ENV_NOT_FOUND;
 	uint32_t have = *(const uint32_t *)((const char *)gens + stride * (size_t)slot);
-	return have && have == gen ? (int)slot : ENV_STALE;
+	if (!have)
+		return ENV_NOT_FOUND; /* nothing there now */
+	return have == gen ? (int)slot : ENV_STALE; /* the slot holds something newer */
 }
 
 int
@@ -227,4 +230,13 @@ env_count(const struct env *e)
 	for (int i = 0; i < ENV_MAX_FIGURES; i++)
 		n += e->fig[i].gen != 0;
 	return n;
+}
+
+int
+env_find_view(const struct env *e, const char *name)
+{
+	for (int i = 0; i < ENV_MAX_VIEWS; i++)
+		if (e->view[i].used && !strcmp(e->view[i].name, name))
+			return i;
+	return -1;
 }

@@ -19,6 +19,7 @@
 #define ENV_MAX_FIGURES 16
 #define ENV_MAX_CONSTRAINTS 64
 #define ENV_PATH_MAX 256
+#define ENV_MAX_VIEWS 8
 
 enum env_err {
 	ENV_OK = 0,
@@ -49,9 +50,19 @@ struct env_constraint {
 	struct ik_constraint_def def;
 };
 
+/* a named view (§1.7: several graphics windows), its camera aimed at a point */
+struct env_view {
+	int used;
+	char name[MODEL_NAME_MAX];
+	int width, height;
+	double eye[3], target[3];
+	int icons; /* 1: the manipulation icons, balance and goals */
+};
+
 struct env {
 	struct env_figure fig[ENV_MAX_FIGURES];
 	struct env_constraint con[ENV_MAX_CONSTRAINTS];
+	struct env_view view[ENV_MAX_VIEWS];
 	uint32_t next_gen;
 };
 
@@ -88,6 +99,9 @@ void env_sync_solver(struct env *e, int fig);
 
 /* the constraint's index in its figure's solver, or -1 (disabled or not yet synced) */
 int env_solver_index(const struct env *e, int slot);
+
+/* a view by name, or -1 */
+int env_find_view(const struct env *e, const char *name);
 
 /* number of figures */
 int env_count(const struct env *e);

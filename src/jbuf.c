@@ -119,3 +119,26 @@ jbuf_key(struct jbuf *j, const char *key, int first)
 	jbuf_str(j, key);
 	put(j, ":", 1);
 }
+
+void
+jbuf_base64(struct jbuf *j, const unsigned char *p, size_t n)
+{
+	static const char a[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+	if (j->len + 4 * ((n + 2) / 3) + 3 > j->cap) {
+		j->overflow = 1;
+		return;
+	}
+	char *o = j->buf + j->len;
+	*o++ = '"';
+	for (size_t i = 0; i < n; i += 3) {
+		unsigned v = (unsigned)p[i] << 16 | (i + 1 < n ? (unsigned)p[i + 1] << 8 : 0) |
+			     (i + 2 < n ? p[i + 2] : 0);
+		*o++ = a[v >> 18 & 63];
+		*o++ = a[v >> 12 & 63];
+		*o++ = i + 1 < n ? a[v >> 6 & 63] : '=';
+		*o++ = i + 2 < n ? a[v & 63] : '=';
+	}
+	*o++ = '"';
+	*o = 0;
+	j->len = (size_t)(o - j->buf);
+}

@@ -28,6 +28,8 @@ void jbuf_int(struct jbuf *j, long long v);
 void jbuf_bool(struct jbuf *j, int v);
 /* [v0,v1,...] */
 void jbuf_vec(struct jbuf *j, const double *v, int n);
+/* bytes as a base64 JSON string */
+void jbuf_base64(struct jbuf *j, const unsigned char *p, size_t n);
 /* ,"key": before a value (first = 1 omits the comma) */
 void jbuf_key(struct jbuf *j, const char *key, int first);
 

@@ -15,6 +15,9 @@
 #include "jbuf.h"
 #include "kin.h"
 #include "notify.h"
+#include "render.h"
+#include "sink.h"
+#include "view.h"
 
 #define IK_LIMITS_REPORTED 256 /* dofs listed as resting on a limit */
 
@@ -29,6 +32,22 @@ struct loop {
 	uint64_t fps_t0, fps_frames;
 	uint64_t watchdog_us, watchdog_last;
 	struct jbuf ev; /* events are written here: no allocation in a frame */
+	uint64_t told_hash[ENV_MAX_FIGURES]; /* postures as the last posture events told them */
+	uint32_t told_gen[ENV_MAX_FIGURES];
+	struct scene {
+		struct render *r; /* made when first needed */
+		int failed;       /* OSMesa could not start: no pictures */
+		struct drawlist *dl;
+		int mesh_base[ENV_MAX_FIGURES];
+		uint32_t mesh_gen[ENV_MAX_FIGURES];
+		struct sink *png[ENV_MAX_VIEWS];
+		char png_name[ENV_MAX_VIEWS][MODEL_NAME_MAX];
+		struct sink *fb;
+		struct sink_png_encoder enc; /* frame events */
+		uint64_t last_png_us, last_event_us;
+		int dirty;
+	} scene;
+	const char *frames_dir;
 	int limit_dofs[IK_LIMITS_REPORTED];
 	int stop;
 };
@@ -100,6 +119,39 @@ posture_event(struct loop *L, int fig)
 	jbuf_vec(j, f->state->com, 3);
 	jbuf_raw(j, "}");
 	send_event(L, SUB_POSTURE);
+}
+
+/* a posture event for every figure that changed since the last one, whoever moved it */
+static void
+posture_changes(struct loop *L)
+{
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		const struct env_figure *f = &L->d.env.fig[i];
+		if (!f->gen)
+			continue;
+		uint64_t h = state_hash(f->model, f->state);
+		if (L->told_gen[i] == f->gen && L->told_hash[i] == h)
+			continue;
+		L->told_gen[i] = f->gen;
+		L->told_hash[i] = h;
+		posture_event(L, i);
+	}
+}
+
+static void
+message_event(struct loop *L)
+{
+	if (!has_subscribers(L, SUB_MESSAGE))
+		return;
+	struct jbuf *j = &L->ev;
+	jbuf_reset(j);
+	jbuf_raw(j, "{\"event\":\"message\"");
+	jbuf_key(j, "frame", 0);
+	jbuf_int(j, (long long)L->d.stats.frame);
+	jbuf_key(j, "text", 0);
+	jbuf_str(j, L->d.message);
+	jbuf_raw(j, "}");
+	send_event(L, SUB_MESSAGE);
 }
 
 /* why a goal is (not) reached: the solver's view of one figure's frame */
@@ -213,10 +265,7 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 		L->d.stats.iterations += r.iterations;
 		L->d.stats.time_cut |= r.status == IK_TIME_LIMIT;
 		L->d.stats.step_cut |= r.stepped;
-		int moved = state_hash(f->model, f->state) != before;
-		*changed |= moved;
-		if (moved)
-			posture_event(L, i);
+		*changed |= state_hash(f->model, f->state) != before;
 		telemetry_event(L, i, &r, opt.budget_us, us);
 	}
 	L->d.stats.frame++;
@@ -228,7 +277,9 @@ settle_frame(struct daemon *d, int *changed)
 {
 	struct loop *L = d->loop;
 	struct ik_clock clock = { virtual_now, L };
-	return frame(L, &clock, L->period_us, changed);
+	int rc = frame(L, &clock, L->period_us, changed);
+	posture_changes(L);
+	return rc;
 }
 
 static int
@@ -242,6 +293,168 @@ subscribe(struct daemon *d, int client, unsigned kinds, int on)
 	else
 		L->srv.c[client].subs &= ~kinds;
 	return 0;
+}
+
+/* ---- pictures ---------------------------------------------------------------- */
+
+#define PNG_PERIOD_US 100000 /* frame files and frame events: at most 10 a second */
+
+static int
+scene_ready(struct loop *L, char *err, size_t errlen)
+{
+	struct scene *sc = &L->scene;
+	if (sc->r)
+		return 0;
+	if (sc->failed) {
+		snprintf(err, errlen, "the renderer could not start");
+		return -1;
+	}
+	struct render_def rd = render_default_def();
+	rd.max_w = VIEW_MAX_W;
+	rd.max_h = VIEW_MAX_H;
+	sc->r = render_make(&rd, err, errlen);
+	sc->dl = sc->r ? view_drawlist_make() : NULL;
+	if (!sc->r || !sc->dl) {
+		fprintf(stderr, "postured: no pictures: %s\n", err);
+		render_free(sc->r);
+		sc->r = NULL;
+		sc->failed = 1;
+		return -1;
+	}
+	return 0;
+}
+
+/* builds and renders view v into the renderer's buffer */
+static int
+scene_draw(struct loop *L, int v, const struct frame **dest, char *err, size_t errlen)
+{
+	struct scene *sc = &L->scene;
+	struct env *e = &L->d.env;
+	const struct env_view *vw = &e->view[v];
+	if (scene_ready(L, err, errlen) < 0)
+		return -1;
+	struct camera cam;
+	view_camera_default(&cam);
+	view_camera_aim(&cam, vw->eye, vw->target);
+	view_begin(sc->dl, &cam, vw->width, vw->height);
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		struct env_figure *f = &e->fig[i];
+		if (!f->gen)
+			continue;
+		if (sc->mesh_gen[i] != f->gen) { /* a figure new to the renderer */
+			int base = render_add_model(sc->r, f->model, err, errlen);
+			if (base < 0)
+				fprintf(stderr, "postured: figure %s drawn without its meshes: %s\n", f->name, err);
+			sc->mesh_base[i] = base < 0 ? 0 : base;
+			sc->mesh_gen[i] = f->gen;
+		}
+		view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
+		if (!vw->icons)
+			continue;
+		if (f->is_human)
+			view_add_balance(sc->dl, f->model, f->state);
+		env_sync_solver(e, i);
+		view_add_goals(sc->dl, f->ik, f->model, f->state);
+	}
+	char status[200];
+	snprintf(status, sizeof status, "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
+		 vw->name, (unsigned long long)L->d.stats.frame, L->d.stats.fps, L->d.stats.ik_us,
+		 L->d.stats.draw_us / 1000);
+	view_add_status(sc->dl, status, L->d.message, 0);
+	static struct frame frame;
+	if (render_frame(sc->r, sc->dl, L->d.stats.frame, &frame) < 0) {
+		snprintf(err, errlen, "render_frame failed");
+		return -1;
+	}
+	frame.seq = L->d.stats.frame;
+	*dest = &frame;
+	return 0;
+}
+
+static int
+render_view(struct daemon *d, int v, const struct frame **dest, char *err, size_t errlen)
+{
+	return scene_draw(d->loop, v, dest, err, errlen);
+}
+
+static void
+frame_event(struct loop *L, const char *view, const struct frame *f)
+{
+	char err[160];
+	struct scene *sc = &L->scene;
+	if (sink_png_encode(&sc->enc, f, err, sizeof err) < 0)
+		return;
+	struct jbuf *j = &L->ev;
+	jbuf_reset(j);
+	jbuf_raw(j, "{\"event\":\"frame\"");
+	jbuf_key(j, "frame", 0);
+	jbuf_int(j, (long long)L->d.stats.frame);
+	jbuf_key(j, "view", 0);
+	jbuf_str(j, view);
+	jbuf_key(j, "width", 0);
+	jbuf_int(j, f->width);
+	jbuf_key(j, "height", 0);
+	jbuf_int(j, f->height);
+	jbuf_key(j, "png", 0);
+	jbuf_base64(j, sc->enc.data, sc->enc.len);
+	jbuf_raw(j, "}");
+	send_event(L, SUB_FRAME);
+}
+
+/* the views' pictures after a frame that changed something */
+static void
+scene_publish(struct loop *L, uint64_t now)
+{
+	struct scene *sc = &L->scene;
+	struct env *e = &L->d.env;
+	int files = L->frames_dir && now - sc->last_png_us >= PNG_PERIOD_US;
+	int events = has_subscribers(L, SUB_FRAME) && now - sc->last_event_us >= PNG_PERIOD_US;
+	if (!sc->dirty || (!files && !events && !sc->fb) || sc->failed)
+		return;
+	uint64_t t0 = real_now(NULL);
+	int first = 1;
+	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
+		const struct env_view *vw = &e->view[v];
+		const struct frame *f;
+		char err[256];
+		if (!vw->used || scene_draw(L, v, &f, err, sizeof err) < 0)
+			continue;
+		if (first && sc->fb && sink_write(sc->fb, f, err, sizeof err) < 0)
+			fprintf(stderr, "postured: framebuffer: %s\n", err);
+		first = 0;
+		if (files) {
+			if (!sc->png[v] || strcmp(sc->png_name[v], vw->name)) {
+				char path[4200];
+				sink_close(sc->png[v]);
+				snprintf(path, sizeof path, "%s/%s.png", L->frames_dir, vw->name);
+				sc->png[v] = sink_png_latest(path, err, sizeof err);
+				snprintf(sc->png_name[v], sizeof sc->png_name[v], "%s", vw->name);
+			}
+			if (sc->png[v] && sink_write(sc->png[v], f, err, sizeof err) < 0)
+				fprintf(stderr, "postured: frame file: %s\n", err);
+		}
+		if (events)
+			frame_event(L, vw->name, f);
+	}
+	if (files)
+		sc->last_png_us = now;
+	if (events)
+		sc->last_event_us = now;
+	sc->dirty = 0;
+	/* drawing's share of the frame, smoothed: the solver gets the rest (§4.7.2) */
+	double us = (double)(real_now(NULL) - t0);
+	L->d.stats.draw_us = L->d.stats.draw_us ? 0.8 * L->d.stats.draw_us + 0.2 * us : us;
+}
+
+static void
+scene_free(struct scene *sc)
+{
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		sink_close(sc->png[v]);
+	sink_close(sc->fb);
+	sink_png_encoder_free(&sc->enc);
+	view_drawlist_free(sc->dl);
+	render_free(sc->r);
 }
 
 /* ---- requests ---------------------------------------------------------------- */
@@ -299,6 +512,14 @@ request(struct loop *L, int i, const char *line, size_t len)
 			     : journal_postures(&L->j, &L->d);
 	if (rc < 0)
 		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	if (out.mutated)
+		L->scene.dirty = 1;
+	if (out.reply) { /* the message line under the pictures */
+		snprintf(L->d.message, sizeof L->d.message, "> %.*s  %s", (int)(len > 100 ? 100 : len),
+			 line, out.ok ? "ok" : "refused");
+		message_event(L);
+	}
+	posture_changes(L);
 	if (out.reply && out.json)
 		reply(L, i, out.json);
 	free(out.json);
@@ -380,6 +601,9 @@ live_frame(struct loop *L)
 	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
 	frame(L, &clock, budget, &changed);
 	uint64_t now = real_now(NULL);
+	L->scene.dirty |= changed;
+	posture_changes(L);
+	scene_publish(L, now);
 	L->fps_frames++;
 	if (now - L->fps_t0 >= 1000000) {
 		L->d.stats.fps = (double)L->fps_frames * 1e6 / (double)(now - L->fps_t0);
@@ -405,6 +629,10 @@ loop_run(const struct loop_config *cfg)
 	L->d.loop = L;
 	L->d.run_frame = settle_frame;
 	L->d.subscribe = subscribe;
+	L->d.render_view = render_view;
+	L->frames_dir = cfg->frames_dir;
+	L->scene.dirty = 1;
+	sink_png_encoder_init(&L->scene.enc);
 	L->period_us = (uint64_t)(1e6 / cfg->fps);
 	L->srv.unix_fd = L->srv.tcp_fd = -1;
 	int status = 1;
@@ -492,6 +720,7 @@ out:
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
 	jbuf_free(&L->ev);
+	scene_free(&L->scene);
 	free(L);
 	return status;
 }

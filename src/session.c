@@ -87,6 +87,17 @@ session_write(const struct env *e, FILE *f)
 			d->weight, d->start_joint >= 0 ? m->jnt_name[d->start_joint] : "-", d->group,
 			d->com_effector);
 	}
+	for (int i = 0; i < ENV_MAX_VIEWS; i++) {
+		const struct env_view *v = &e->view[i];
+		if (!v->used)
+			continue;
+		fprintf(f, "view %s width=%d height=%d icons=%d eye=", v->name, v->width, v->height,
+			v->icons);
+		write_vec(f, v->eye, 3);
+		fprintf(f, " target=");
+		write_vec(f, v->target, 3);
+		fprintf(f, "\n");
+	}
 	fprintf(f, "end\n");
 	return ferror(f) ? -1 : 0;
 }
@@ -347,6 +358,31 @@ read_constraint(struct reader *r, struct env *e)
 	return 0;
 }
 
+static int
+read_view(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	unsigned long wd, ht, icons;
+	struct env_view v = { .used = 1 };
+	if (w->n != 7 || !words_is_name(w->w[1]) || env_find_view(e, w->w[1]) >= 0 ||
+	    read_uint(arg(w, 2, "width"), 16384, &wd) < 0 || wd < 16 ||
+	    read_uint(arg(w, 2, "height"), 16384, &ht) < 0 || ht < 16 ||
+	    read_uint(arg(w, 2, "icons"), 1, &icons) < 0 ||
+	    words_list(arg(w, 2, "eye"), UNIT_NONE, 3, v.eye) < 0 ||
+	    words_list(arg(w, 2, "target"), UNIT_NONE, 3, v.target) < 0)
+		return fail(r, "expected: view NAME width=W height=H icons=0|1 eye=X,Y,Z target=X,Y,Z");
+	snprintf(v.name, sizeof v.name, "%s", w->w[1]);
+	v.width = (int)wd;
+	v.height = (int)ht;
+	v.icons = (int)icons;
+	for (int i = 0; i < ENV_MAX_VIEWS; i++)
+		if (!e->view[i].used) {
+			e->view[i] = v;
+			return 0;
+		}
+	return fail(r, "more than %d views", ENV_MAX_VIEWS);
+}
+
 int
 session_read(const char *text, size_t len, const char *base_dir, const char *library_dir,
 	     struct env *dest, char *err, size_t errlen)
@@ -383,6 +419,8 @@ session_read(const char *text, size_t len, const char *base_dir, const char *lib
 			ok = read_q(r, dest);
 		else if (!strcmp(kw, "constraint"))
 			ok = read_constraint(r, dest);
+		else if (!strcmp(kw, "view"))
+			ok = read_view(r, dest);
 		else if (!strcmp(kw, "end"))
 			ok = 0, ended = 1;
 		else
