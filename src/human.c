@@ -215,9 +215,12 @@ build_trunk(struct hb *h)
 		vset(p, 0, (y0 + y1) / 2, 0);
 		if (k == HUMAN_SLICE_CHEST)
 			add_site(h, i, "chest", p);
-		/* one flattened ellipsoid per slice; neighbours overlap into a torso */
+		/* one flattened ellipsoid per slice, tall enough that neighbours
+		 * blend into one smooth torso rather than a stack of rings (the
+		 * outermost slices less, so that they stay inside the outline) */
 		human_torso_semi(L, p[1], &hw, &hd);
-		add_geom(h, i, GEOM_ELLIPSOID, hw, y1 - y0, hd, p, NULL);
+		double reach = k == 0 || k == HUMAN_NSLICE - 1 ? 1.5 : 3.0;
+		add_geom(h, i, GEOM_ELLIPSOID, hw, reach * (y1 - y0), hd, p, NULL);
 	}
 	for (int s = 0; s < 2; s++) {
 		char name[16];
@@ -241,6 +244,9 @@ build_head(struct hb *h)
 		 L->head_c, NULL);
 	vset(q, 0, 0.905 * H, 0);
 	add_capsule(h, HUMAN_SEG_HEAD, L->spine[HUMAN_NSLICE], q, 0.030 * H);
+	/* a nose, so that the face reads as a face from any side */
+	vset(p, 0, L->eye[1] - 0.016 * H, L->head_c[2] + 0.97 * L->head_semi[2]);
+	add_geom(h, HUMAN_SEG_HEAD, GEOM_ELLIPSOID, 0.008 * H, 0.014 * H, 0.010 * H, p, NULL);
 	for (int s = 0; s < 2; s++) {
 		char name[16];
 		int i = HUMAN_SEG_EYE + s;
