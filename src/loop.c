@@ -638,6 +638,10 @@ loop_run(const struct loop_config *cfg)
 	int status = 1;
 	if (jbuf_init(&L->ev, 1u << 20) < 0)
 		goto out;
+	if (cfg->fb_device && !(L->scene.fb = sink_fb_open(cfg->fb_device, err, sizeof err))) {
+		fprintf(stderr, "postured: framebuffer %s: %s\n", cfg->fb_device, err);
+		goto out;
+	}
 	if (journal_open(&L->j, &L->d, err, sizeof err) < 0) {
 		fprintf(stderr, "postured: cannot recover the state: %s\n", err);
 		goto out;

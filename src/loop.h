@@ -19,6 +19,7 @@ struct loop_config {
 	const char *token;
 	const char *init_file; /* commands for a first start, NULL: none */
 	const char *library_dir; /* shipped figure files, NULL: none */
+	const char *fb_device;   /* a framebuffer for the first view, NULL: none */
 };
 
 /* runs until SIGTERM or SIGINT; returns the process exit status */

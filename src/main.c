@@ -20,7 +20,9 @@ static const char usage[] =
 	"                     else /tmp/posture-UID/postured.sock); created mode 0660\n"
 	"  --state-dir DIR    journal, snapshots, posture and session files (default\n"
 	"                     $XDG_STATE_HOME/posture, else ~/.local/state/posture)\n"
-	"  --frames DIR       where rendered frames go (default: none)\n"
+	"  --frames DIR       where rendered frames go, one DIR/VIEW.png per view,\n"
+	"                     replaced atomically at most 10 times a second (default: none)\n"
+	"  --fb DEVICE        also show the first view on a Linux framebuffer (/dev/fbN)\n"
 	"  --fps N            frame rate of the loop (default 60)\n"
 	"  --tcp PORT         also listen on 127.0.0.1:PORT (needs --token)\n"
 	"  --token TOKEN      the token TCP clients must send first (auth TOKEN)\n"
@@ -35,7 +37,7 @@ static const char usage[] =
 
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
-	char token[128];
+	char fb[PATH_MAX], token[128];
 	double fps;
 	int tcp;
 };
@@ -50,6 +52,8 @@ set(struct settings *s, const char *key, const char *val)
 		snprintf(s->state_dir, sizeof s->state_dir, "%s", val);
 	else if (!strcmp(key, "frames"))
 		snprintf(s->frames, sizeof s->frames, "%s", val);
+	else if (!strcmp(key, "fb"))
+		snprintf(s->fb, sizeof s->fb, "%s", val);
 	else if (!strcmp(key, "library"))
 		snprintf(s->library, sizeof s->library, "%s", val);
 	else if (!strcmp(key, "init"))
@@ -188,6 +192,6 @@ main(int argc, char **argv)
 		s.state_dir, s.frames[0] ? s.frames : "(none)", s.fps, s.tcp ? ", tcp on" : "");
 	struct loop_config cfg = { s.socket, s.state_dir, s.frames[0] ? s.frames : NULL, s.fps,
 				   s.tcp, s.token, s.init[0] ? s.init : NULL,
-				   s.library[0] ? s.library : NULL };
+				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL };
 	return loop_run(&cfg);
 }
