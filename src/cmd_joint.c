@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cmd.h"
+#include "balance.h"
 #include "kin.h"
 
 static int
@@ -178,5 +179,31 @@ cmd_set_location(struct cmd_ctx *c)
 	if (given)
 		memcpy(f->state->root_xf.r, r, sizeof f->state->root_xf.r);
 	kin_update(f->model, f->state);
+	return 0;
+}
+
+int
+cmd_get_balance(struct cmd_ctx *c)
+{
+	int fig = cmd_figure(c, c->argv[0]);
+	if (fig < 0)
+		return -1;
+	const struct env_figure *f = &c->d->env.fig[fig];
+	struct balance b;
+	if (balance_measure(f->model, f->state, BALANCE_CONTACT, &b) < 0)
+		return cmd_fail(c, "bad-argument", "figure %s has no feet to balance on", f->name);
+	json_t *poly = json_array();
+	for (int i = 0; i < b.npoly; i++)
+		json_array_append_new(poly, cmd_vec(b.poly[i], 2));
+	json_t *line = json_array();
+	json_array_append_new(line, cmd_vec(b.ref_l, 2));
+	json_array_append_new(line, cmd_vec(b.ref_r, 2));
+	json_object_set_new(c->result, "polygon", poly);
+	json_object_set_new(c->result, "balance_line", line);
+	json_object_set_new(c->result, "point", cmd_vec(b.point, 2));
+	json_object_set_new(c->result, "x", json_real(b.x));
+	json_object_set_new(c->result, "z", json_real(b.z));
+	json_object_set_new(c->result, "margin", json_real(b.margin));
+	json_object_set_new(c->result, "weight_left", json_real(b.weight_l));
 	return 0;
 }

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "balance.h"
 #include "view_internal.h"
 
 /* ---- icons ------------------------------------------------------------------- */
@@ -355,120 +356,16 @@ view_add_goals(struct drawlist *dl, const struct ik *ik, const struct model *m,
 
 /* ---- balance ------------------------------------------------------------- */
 
-#define HULL_MAX 256
-
-static double
-cross2(const double o[2], const double a[2], const double b[2])
-{
-	return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-}
-
-/* sorts points (x, z) by x then z; insertion sort: n is small */
-static void
-sort2(double (*p)[2], int n)
-{
-	for (int i = 1; i < n; i++)
-		for (int j = i; j > 0 && (p[j][0] < p[j - 1][0] ||
-					  (p[j][0] == p[j - 1][0] && p[j][1] < p[j - 1][1]));
-		     j--) {
-			double t[2] = { p[j][0], p[j][1] };
-			memcpy(p[j], p[j - 1], sizeof t);
-			memcpy(p[j - 1], t, sizeof t);
-		}
-}
-
-/* Andrew's monotone chain: hull of p[0..n) into h, counter-clockwise in (x, z); returns its size */
-static int
-hull2(double (*p)[2], int n, double (*h)[2])
-{
-	int k = 0;
-	sort2(p, n);
-	for (int i = 0; i < n; i++) {
-		while (k >= 2 && cross2(h[k - 2], h[k - 1], p[i]) <= 0)
-			k--;
-		memcpy(h[k++], p[i], sizeof p[i]);
-	}
-	for (int i = n - 2, t = k + 1; i >= 0; i--) {
-		while (k >= t && cross2(h[k - 2], h[k - 1], p[i]) <= 0)
-			k--;
-		memcpy(h[k++], p[i], sizeof p[i]);
-	}
-	return n > 1 ? k - 1 : n;
-}
-
-/* sample points of a geom's surface (its bounding box corners and axis ends) in the world */
-static int
-geom_points(const struct model *m, const struct state *s, int g, double (*dest)[3])
-{
-	const double *sz = &m->geom_size[3 * g];
-	double half[3];
-	switch ((enum geom_kind)m->geom_kind[g]) {
-	case GEOM_BOX:
-	case GEOM_MESH:
-		v_set(half, sz[0] / 2, sz[1] / 2, sz[2] / 2);
-		break;
-	case GEOM_ELLIPSOID:
-		v_set(half, sz[0], sz[1], sz[2]);
-		break;
-	case GEOM_CYLINDER:
-	case GEOM_CAPSULE:
-		v_set(half, sz[0], sz[1] / 2 + (m->geom_kind[g] == GEOM_CAPSULE ? sz[0] : 0), sz[0]);
-		break;
-	default:
-		return 0;
-	}
-	struct xform loc, x;
-	mathx_quat_to_mat(&m->geom_quat[4 * g], loc.r);
-	memcpy(loc.p, &m->geom_pos[3 * g], sizeof loc.p);
-	xform_mul(&s->seg_xf[m->geom_seg[g]], &loc, &x);
-	for (int c = 0; c < 8; c++) {
-		double l[3] = { c & 1 ? half[0] : -half[0], c & 2 ? half[1] : -half[1],
-				c & 4 ? half[2] : -half[2] };
-		xform_apply(&x, l, dest[c]);
-	}
-	return 8;
-}
-
-/* 1 when (x, z) lies inside the counter-clockwise hull h */
-static int
-inside2(double (*h)[2], int n, const double p[2])
-{
-	if (n < 3)
-		return 0;
-	for (int i = 0; i < n; i++)
-		if (cross2(h[i], h[(i + 1) % n], p) < 0)
-			return 0;
-	return 1;
-}
-
 int
 view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s)
 {
-	static const char *const feet[4] = { "foot_l", "foot_r", "toes_l", "toes_r" };
 	static const uint8_t c_poly[4] = { 60, 120, 200, 255 }, c_line[4] = { 30, 60, 160, 255 };
-	double pts[HULL_MAX][2], hull[HULL_MAX + 1][2], gp[8][3];
 	uint8_t tc[4];
-	int n = 0;
-	int bl = model_find_site(m, "foot_l.balance"), br = model_find_site(m, "foot_r.balance");
-	if (bl < 0 || br < 0)
+	struct balance bal; /* the support polygon and balance line, as balance.c measures them */
+	if (balance_measure(m, s, BALANCE_CONTACT, &bal) < 0)
 		return -1;
-
-	/* the feet's geometry near the floor, projected to it */
-	for (int f = 0; f < 4; f++) {
-		int seg = model_find_segment(m, feet[f]);
-		if (seg < 0)
-			continue;
-		for (int g = m->seg_geom0[seg]; g < m->seg_geom0[seg] + m->seg_ngeom[seg]; g++) {
-			int k = geom_points(m, s, g, gp);
-			for (int i = 0; i < k && n < HULL_MAX; i++)
-				if (gp[i][1] < 0.02) {
-					pts[n][0] = gp[i][0];
-					pts[n][1] = gp[i][2];
-					n++;
-				}
-		}
-	}
-	int nh = hull2(pts, n, hull);
+	int nh = bal.npoly;
+	double (*hull)[2] = bal.poly;
 	const double y = 0.002; /* just above the floor */
 
 	/* the support polygon: a translucent fill and its outline */
@@ -488,14 +385,13 @@ view_add_balance(struct drawlist *dl, const struct model *m, const struct state 
 	}
 
 	/* the balance line between the feet's reference points */
-	double pl[3] = { s->site_xf[bl].p[0], y, s->site_xf[bl].p[2] };
-	double pr[3] = { s->site_xf[br].p[0], y, s->site_xf[br].p[2] };
+	double pl[3] = { bal.ref_l[0], y, bal.ref_l[1] };
+	double pr[3] = { bal.ref_r[0], y, bal.ref_r[1] };
 	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, THICK_WIDTH, 1);
 	view_line(dl, pl, pr, c_line);
 
 	/* the centre of mass: a plumb line, a ring at its height and the balance point */
-	double b2[2] = { s->com[0], s->com[2] };
-	const uint8_t *cb = inside2(hull, nh, b2) ? C_GREEN : C_RED;
+	const uint8_t *cb = bal.margin > 0 ? C_GREEN : C_RED;
 	double bp[3] = { s->com[0], y, s->com[2] }, up[3] = { 0, 1, 0 }, ux[3] = { 1, 0, 0 };
 	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, 1.5f, 1);
 	int dashes = 24;
