@@ -215,6 +215,24 @@ font_texture(struct render *r, const char *path, char *err, size_t errlen)
 	return 0;
 }
 
+/* a SHADOW_TEX square texture to draw into; 0 or -1 */
+static int
+target_texture(GLuint *tex, GLuint *fbo)
+{
+	glGenTextures(1, tex);
+	glBindTexture(GL_TEXTURE_2D, *tex);
+	glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, SHADOW_TEX, SHADOW_TEX, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+		     NULL);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+	glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+	glGenFramebuffers(1, fbo);
+	glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
+	glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex, 0);
+	return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? 0 : -1;
+}
+
 struct render *
 render_make(const struct render_def *d, char *err, size_t errlen)
 {
@@ -274,41 +292,13 @@ render_make(const struct render_def *d, char *err, size_t errlen)
 		glBindFramebuffer(GL_FRAMEBUFFER, 0);
 	}
 
-	if (r->shadows) {
-		glGenTextures(1, &r->shadow_tex);
-		glBindTexture(GL_TEXTURE_2D, r->shadow_tex);
-		glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, SHADOW_TEX, SHADOW_TEX, 0, GL_RGBA,
-			     GL_UNSIGNED_BYTE, NULL);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-		glGenFramebuffers(1, &r->shadow_fbo);
-		glBindFramebuffer(GL_FRAMEBUFFER, r->shadow_fbo);
-		glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-				       r->shadow_tex, 0);
-		if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-			snprintf(err, errlen, "no shadow map framebuffer");
-			goto fail;
-		}
-		glGenTextures(1, &r->blur_tex);
-		glBindTexture(GL_TEXTURE_2D, r->blur_tex);
-		glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, SHADOW_TEX, SHADOW_TEX, 0, GL_RGBA,
-			     GL_UNSIGNED_BYTE, NULL);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-		glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-		glGenFramebuffers(1, &r->blur_fbo);
-		glBindFramebuffer(GL_FRAMEBUFFER, r->blur_fbo);
-		glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-				       r->blur_tex, 0);
-		if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-			snprintf(err, errlen, "no shadow blur framebuffer");
-			goto fail;
-		}
-		glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	/* the shadow map and its blurred copy: each a texture behind a framebuffer */
+	if (r->shadows && (target_texture(&r->shadow_tex, &r->shadow_fbo) < 0 ||
+			   target_texture(&r->blur_tex, &r->blur_fbo) < 0)) {
+		snprintf(err, errlen, "no shadow map framebuffer");
+		goto fail;
 	}
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
 	r->prog_lit = program(render_glsl_lit_vs, render_glsl_lit_fs, err, errlen);
 	r->prog_color = r->prog_lit ? program(render_glsl_color_vs, render_glsl_color_fs, err, errlen) : 0;
 	r->prog_floor = r->prog_color ? program(render_glsl_floor_vs, render_glsl_floor_fs, err, errlen) : 0;

@@ -13,26 +13,14 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_util.h"
 #include "human.h"
 #include "kin.h"
 
 #define BATCHES 31
 #define MAX_POSTURES 4096
 
-static double
-now_us(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return t.tv_sec * 1e6 + t.tv_nsec / 1e3;
-}
 
-static int
-cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
-}
 
 static int
 load_postures(const char *path, int ndof, double *q)
@@ -87,15 +75,15 @@ main(int argc, char **argv)
 	}
 	double batch[BATCHES], sink = 0;
 	for (int b = 0; b < BATCHES; b++) {
-		double t0 = now_us();
+		double t0 = bench_now_us();
 		for (int i = 0; i < n; i++) {
 			memcpy(s->q, &q[(size_t)i * m->ndof], sizeof *q * (size_t)m->ndof);
 			kin_update(m, s);
 			sink += s->com[1];
 		}
-		batch[b] = (now_us() - t0) / n;
+		batch[b] = (bench_now_us() - t0) / n;
 	}
-	qsort(batch, BATCHES, sizeof *batch, cmp_double);
+	qsort(batch, BATCHES, sizeof *batch, bench_cmp_double);
 	printf("fk_human: %d segments, %d sites, %d dofs; %d postures x %d batches (checksum %.6g)\n",
 	       m->nseg, m->nsite, m->ndof, n, BATCHES, sink);
 	printf("BENCH fk.human.posture us=%.3f min_us=%.3f\n", batch[BATCHES / 2], batch[0]);

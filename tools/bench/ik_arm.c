@@ -45,6 +45,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_util.h"
 #include "human.h"
 #include "ik.h"
 #include "kin.h"
@@ -84,29 +85,8 @@ struct arm {
 	int dof[NARM];
 };
 
-static uint64_t
-clock_us(void *ctx)
-{
-	(void)ctx;
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
-}
 
-static double
-now_us(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return t.tv_sec * 1e6 + t.tv_nsec / 1e3;
-}
 
-static int
-cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
-}
 
 /* builds the human and finds the arm; 0 or -1 */
 static int
@@ -230,7 +210,7 @@ tally_solve(struct arm *a, struct tally *t, const double q[NARM], const struct t
 static void
 tally_print(struct tally *t, const char *extra)
 {
-	qsort(t->us, (size_t)t->n, sizeof *t->us, cmp_double);
+	qsort(t->us, (size_t)t->n, sizeof *t->us, bench_cmp_double);
 	double median = t->n % 2 ? t->us[t->n / 2] : (t->us[t->n / 2 - 1] + t->us[t->n / 2]) / 2;
 	int p95 = (int)ceil(0.95 * t->n) - 1;
 	char iters[32] = "";
@@ -277,16 +257,16 @@ bench_ours(struct arm *a, const struct target *tg, int n, int max_iter, struct t
 		opt.max_iter = max_iter;
 	opt.tol_pos = 1e-4;
 	opt.tol_ori = 1e-3;
-	struct ik_clock clock = { clock_us, NULL };
+	struct ik_clock clock = { bench_clock_us, NULL };
 	int met_but_failed = 0, not_met_but_ok = 0, moved_other = 0;
 	/* the first WARMUP solves (of the first targets) warm the caches and are not counted */
 	for (int i = 0; i < n + WARMUP; i++) {
 		const struct target *g = &tg[i < WARMUP ? i % n : i - WARMUP];
 		state_reset(m, a->s);
 		ik_set_goal(ik, 0, &g->xf);
-		double t0 = now_us();
+		double t0 = bench_now_us();
 		struct ik_result r = ik_solve(ik, m, a->s, &opt, &clock);
-		double us = now_us() - t0;
+		double us = bench_now_us() - t0;
 		if (i < WARMUP)
 			continue;
 		double q[NARM];
@@ -385,12 +365,12 @@ bench_nlopt(struct arm *a, const struct target *tg, int n, nlopt_algorithm alg, 
 		state_reset(m, a->s);
 		ik_set_goal(ik, 0, &g->xf);
 		ctx.evals = 0;
-		double f = 0, t0 = now_us();
+		double f = 0, t0 = bench_now_us();
 		ik_prepare(ik, m, a->s, 0);
 		for (int k = 0; k < NARM; k++)
 			x[k] = a->s->q[ik_var_dof(ik, k)];
 		nlopt_result res = nlopt_optimize(o, x, &f);
-		double us = now_us() - t0;
+		double us = bench_now_us() - t0;
 		if (i < WARMUP)
 			continue;
 		for (int k = 0; k < NARM; k++)

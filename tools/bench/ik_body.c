@@ -18,6 +18,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_util.h"
 #include "human.h"
 #include "ik.h"
 #include "kin.h"
@@ -27,37 +28,9 @@
 #define MAX_FRAMES 300
 #define DEG (M_PI / 180)
 
-static uint64_t
-now_us(void *ctx)
-{
-	(void)ctx;
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
-}
 
-static double
-now_precise(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return t.tv_sec * 1e6 + t.tv_nsec / 1e3;
-}
 
-static int
-cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
-}
 
-static double
-percentile(double *v, int n, double p)
-{
-	qsort(v, (size_t)n, sizeof *v, cmp_double);
-	int i = (int)(p * (n - 1) + 0.5);
-	return v[i];
-}
 
 /* every constraint of the stance and the hand met to the success test */
 static int
@@ -104,7 +77,7 @@ main(void)
 	opt.restarts = 2;
 	opt.restart_groups = 1u << 1;
 	opt.restart_after = 50;
-	struct ik_clock clock = { now_us, NULL };
+	struct ik_clock clock = { bench_clock_us, NULL };
 
 	/* the rest posture: the stance settled "at ease" (knees off full extension) */
 	for (int i = 0; i < 50; i++)
@@ -126,9 +99,9 @@ main(void)
 		state_copy(m, rest, s);
 		int f = 0, done = 0;
 		for (; f < MAX_FRAMES && !done; f++) {
-			double t0 = now_precise();
+			double t0 = bench_now_us();
 			struct ik_result r = ik_solve(ik, m, s, &opt, &clock);
-			frame_us[nframes++] = now_precise() - t0;
+			frame_us[nframes++] = bench_now_us() - t0;
 			cut += r.status == IK_TIME_LIMIT;
 			rounds += r.balance_rounds;
 			restarts += r.restarts;
@@ -139,9 +112,9 @@ main(void)
 		ok += done;
 	}
 	int n = nframes;
-	double med = percentile(frame_us, n, 0.5), p95 = percentile(frame_us, n, 0.95);
+	double med = bench_percentile(frame_us, n, 0.5), p95 = bench_percentile(frame_us, n, 0.95);
 	double max = frame_us[n - 1];
-	double fmed = percentile(frames_to, TARGETS, 0.5), fp95 = percentile(frames_to, TARGETS, 0.95);
+	double fmed = bench_percentile(frames_to, TARGETS, 0.5), fp95 = bench_percentile(frames_to, TARGETS, 0.95);
 	printf("ik_body: %d targets, %d frames, time limit %.1f ms, step %.0f cm / %.0f deg, "
 	       "%.2f balance rounds a frame, %d frames cut by the time limit\n",
 	       TARGETS, n, opt.budget_us / 1e3, opt.step_pos * 100, opt.step_ori / DEG,
