@@ -138,29 +138,35 @@ balance_measure(const struct model *m, const struct state *s, double contact_hei
 	dest->point[0] = s->com[0], dest->point[1] = s->com[2];
 	/* forward: across the line from left to right, turned as the feet face (up x line) */
 	double d[2] = { dest->ref_r[0] - dest->ref_l[0], dest->ref_r[1] - dest->ref_l[1] };
-	double len = sqrt(dot2(d, d));
-	if (len < 1e-9) { /* feet together: forward is where the left foot points */
+	if (dot2(d, d) < 1e-18) { /* feet together: forward is where the left foot points */
 		int toe = model_find_site(m, "toes_l.tip");
 		double f[2] = { toe >= 0 ? s->site_xf[toe].p[0] - dest->ref_l[0] : 0,
 				toe >= 0 ? s->site_xf[toe].p[2] - dest->ref_l[1] : 1 };
 		double fl = sqrt(dot2(f, f));
 		d[0] = -f[1] / fl, d[1] = f[0] / fl; /* so that forward below comes out as f */
-		len = 1e-9;
 	}
 	double u[2] = { d[0] / sqrt(dot2(d, d)), d[1] / sqrt(dot2(d, d)) };
 	dest->forward[0] = u[1], dest->forward[1] = -u[0];
-	/* Figure 5.2: p the nearest point of the line, x its place, z the way forward */
-	double w[2] = { dest->point[0] - dest->ref_l[0], dest->point[1] - dest->ref_l[1] };
-	dest->x = len > 1e-9 ? dot2(w, d) / (len * len) : 0.5;
-	double p[2] = { dest->ref_l[0] + dest->x * d[0], dest->ref_l[1] + dest->x * d[1] };
-	double off[2] = { dest->point[0] - p[0], dest->point[1] - p[1] };
-	double zraw = dot2(off, dest->forward);
-	double back[2] = { -dest->forward[0], -dest->forward[1] };
-	double edge = reach_along(dest, p, zraw >= 0 ? dest->forward : back);
-	dest->z = edge > 1e-9 ? zraw / edge : (zraw >= 0 ? 1e9 : -1e9);
+	balance_params_of(dest, dest->point, &dest->x, &dest->z);
 	dest->margin = balance_margin(dest, dest->point);
 	dest->weight_l = dest->x < 0 ? 1 : dest->x > 1 ? 0 : 1 - dest->x;
 	return 0;
+}
+
+void
+balance_params_of(const struct balance *b, const double pt[2], double *x, double *z)
+{
+	/* Figure 5.2: p the nearest point of the line, x its place, z the way forward */
+	double d[2] = { b->ref_r[0] - b->ref_l[0], b->ref_r[1] - b->ref_l[1] };
+	double len2 = dot2(d, d);
+	double w[2] = { pt[0] - b->ref_l[0], pt[1] - b->ref_l[1] };
+	*x = len2 > 1e-18 ? dot2(w, d) / len2 : 0.5;
+	double p[2] = { b->ref_l[0] + *x * d[0], b->ref_l[1] + *x * d[1] };
+	double off[2] = { pt[0] - p[0], pt[1] - p[1] };
+	double zraw = dot2(off, b->forward);
+	double back[2] = { -b->forward[0], -b->forward[1] };
+	double edge = reach_along(b, p, zraw >= 0 ? b->forward : back);
+	*z = edge > 1e-9 ? zraw / edge : (zraw >= 0 ? 1e9 : -1e9);
 }
 
 void

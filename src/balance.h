@@ -36,6 +36,9 @@ struct balance {
 int balance_measure(const struct model *m, const struct state *s, double contact_height,
 		    struct balance *dest);
 
+/* the parameters (x, z) of any floor point for the feet as measured in b (Figure 5.2) */
+void balance_params_of(const struct balance *b, const double p[2], double *x, double *z);
+
 /* the floor point of parameters (x, z) for the feet as measured in b (Figure 5.2 inverted) */
 void balance_point_of(const struct balance *b, double x, double z, double dest[2]);
 

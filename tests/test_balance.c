@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "test_util.h"
+
 #include <stdio.h>
 #include <string.h>
 
@@ -38,7 +40,7 @@ test_hull_of_two_feet_is_their_outer_rectangle(void **unused)
 		const double *p = b.poly[i], *q = b.poly[(i + 1) % b.npoly];
 		area += p[0] * q[1] - q[0] * p[1];
 	}
-	assert_float_equal(area / 2, 0.3 * 0.26, 1e-12);
+	assert_near(area / 2, 0.3 * 0.26, 1e-12);
 }
 
 static void
@@ -50,17 +52,17 @@ test_parameters_and_their_inverse(void **unused)
 	/* on the line, a quarter of the way from the left foot: x = 0.25, z = 0 */
 	double p[2];
 	balance_point_of(&b, 0.25, 0, p);
-	assert_float_equal(p[0], 0.05, 1e-12);
-	assert_float_equal(p[1], 0.04, 1e-12);
+	assert_near(p[0], 0.05, 1e-12);
+	assert_near(p[1], 0.04, 1e-12);
 	/* halfway to the front edge (z 0.04 -> 0.18) and to the back edge (0.04 -> -0.08) */
 	balance_point_of(&b, 0.5, 0.5, p);
-	assert_float_equal(p[1], 0.11, 1e-12);
+	assert_near(p[1], 0.11, 1e-12);
 	balance_point_of(&b, 0.5, -0.5, p);
-	assert_float_equal(p[1], -0.02, 1e-12);
+	assert_near(p[1], -0.02, 1e-12);
 	/* the margin: inside, the distance to the nearest edge; outside, negative */
 	double centre[2] = { 0, 0.05 }, out[2] = { 0, 0.28 };
-	assert_float_equal(balance_margin(&b, centre), 0.13, 1e-12);
-	assert_float_equal(balance_margin(&b, out), -0.10, 1e-12);
+	assert_near(balance_margin(&b, centre), 0.13, 1e-12);
+	assert_near(balance_margin(&b, out), -0.10, 1e-12);
 }
 
 static struct model *
@@ -82,16 +84,16 @@ test_standing_human_is_balanced_between_its_feet(void **unused)
 	struct balance b;
 	assert_int_equal(balance_measure(m, s, BALANCE_CONTACT, &b), 0);
 	assert_true(b.npoly >= 4);
-	assert_float_equal(b.x, 0.5, 1e-9);
-	assert_float_equal(b.z, 0, 1e-9);
-	assert_float_equal(b.weight_l, 0.5, 1e-9);
-	assert_float_equal(b.forward[1], 1, 1e-12);
+	assert_near(b.x, 0.5, 1e-9);
+	assert_near(b.z, 0, 1e-9);
+	assert_near(b.weight_l, 0.5, 1e-9);
+	assert_near(b.forward[1], 1, 1e-12);
 	assert_true(b.margin > 0.05); /* well inside */
 	/* the inverse of the parameters gives back the balance point */
 	double p[2];
 	balance_point_of(&b, b.x, b.z, p);
-	assert_float_equal(p[0], b.point[0], 1e-12);
-	assert_float_equal(p[1], b.point[1], 1e-12);
+	assert_near(p[0], b.point[0], 1e-12);
+	assert_near(p[1], b.point[1], 1e-12);
 	state_free(s);
 	model_free(m);
 }
@@ -114,7 +116,7 @@ test_leaning_moves_the_parameters_the_right_way(void **unused)
 	kin_update(m, s);
 	balance_measure(m, s, BALANCE_CONTACT, &b);
 	assert_true(b.z > 0.1);
-	assert_float_equal(b.x, 0.5, 1e-9); /* straight forward: no side shift */
+	assert_near(b.x, 0.5, 1e-9); /* straight forward: no side shift */
 	for (int k = 0; k < HUMAN_NSPINE; k++) {
 		char name[32];
 		snprintf(name, sizeof name, "spine_%d", k);
@@ -129,8 +131,8 @@ test_leaning_moves_the_parameters_the_right_way(void **unused)
 	/* the parameters are those of the point: the inverse agrees */
 	double p[2];
 	balance_point_of(&b, b.x, b.z, p);
-	assert_float_equal(p[0], b.point[0], 1e-12);
-	assert_float_equal(p[1], b.point[1], 1e-12);
+	assert_near(p[0], b.point[0], 1e-12);
+	assert_near(p[1], b.point[1], 1e-12);
 	state_free(s);
 	model_free(m);
 }

@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "test_util.h"
+
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -90,9 +92,9 @@ site_of(const struct model *m, const char *name)
 static void
 assert_vec_near(const double *v, double x, double y, double z, double tol)
 {
-	assert_float_equal(v[0], x, tol);
-	assert_float_equal(v[1], y, tol);
-	assert_float_equal(v[2], z, tol);
+	assert_near(v[0], x, tol);
+	assert_near(v[1], y, tol);
+	assert_near(v[2], z, tol);
 }
 
 static void
@@ -175,8 +177,8 @@ test_units_and_transforms(void **unused)
 	struct model *m = read_text_ok(text, NULL);
 	const double *p = &m->site_pos[3 * site_of(m, "a.inch")];
 	assert_true(p[0] == 0.0254); /* 1in is 0.0254 m exactly */
-	assert_float_equal(p[1], 0.0254, 1e-17);
-	assert_float_equal(p[2], 0.0254, 1e-17);
+	assert_near(p[1], 0.0254, 1e-17);
+	assert_near(p[2], 0.0254, 1e-17);
 	assert_true(m->seg_mass[0] == 0.5); /* 500g */
 	assert_true(m->total_mass == 2.5);
 	assert_true(m->dof_hi[0] == M_PI / 2 && m->dof_lo[0] == -M_PI / 2); /* 90deg */
@@ -268,12 +270,12 @@ test_environment_figures(void **unused)
 {
 	(void)unused;
 	struct model *m = read_ok(ENV_DIR "/table.fig");
-	assert_float_equal(m->site_pos[3 * site_of(m, "table.surface") + 1], 0.74, 1e-12);
-	assert_float_equal(m->root_pos[2], 0.60, 1e-12);
+	assert_near(m->site_pos[3 * site_of(m, "table.surface") + 1], 0.74, 1e-12);
+	assert_near(m->root_pos[2], 0.60, 1e-12);
 	model_free(m);
 
 	m = read_ok(ENV_DIR "/chair.fig");
-	assert_float_equal(m->site_pos[3 * site_of(m, "chair.seat") + 1], 0.45, 1e-12);
+	assert_near(m->site_pos[3 * site_of(m, "chair.seat") + 1], 0.45, 1e-12);
 	model_free(m);
 
 	m = read_ok(ENV_DIR "/vehicle_seat.fig");
@@ -289,12 +291,12 @@ test_environment_figures(void **unused)
 	/* H-point 27 cm over the heel plane; wheel centre 60-70 cm from it */
 	const double *h = &m->site_pos[3 * site_of(m, "body.seat_track")];
 	const double *w = &m->site_pos[3 * site_of(m, "body.wheel_mount")];
-	assert_float_equal(h[1], 0.27, 1e-12);
+	assert_near(h[1], 0.27, 1e-12);
 	double d = sqrt((w[0] - h[0]) * (w[0] - h[0]) + (w[1] - h[1]) * (w[1] - h[1]) +
 			(w[2] - h[2]) * (w[2] - h[2]));
 	assert_true(d > 0.60 && d < 0.70);
 	int recline = m->jnt_dof0[model_find_joint(m, "recline")];
-	assert_float_equal(m->dof_init[recline], 23 * M_PI / 180, 1e-15);
+	assert_near(m->dof_init[recline], 23 * M_PI / 180, 1e-15);
 	model_free(m);
 }
 

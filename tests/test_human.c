@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "test_util.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -170,14 +172,14 @@ test_mass_limits_extent(void **unused)
 			assert_true(m->seg_mass[i] > 0);
 			sum += m->seg_mass[i];
 		}
-		assert_float_equal(sum, defs[f].mass, 1e-9);
+		assert_near(sum, defs[f].mass, 1e-9);
 		for (int d = 0; d < m->ndof; d++) {
 			const char *jn = m->jnt_name[m->dof_jnt[d]];
-			assert_float_equal(m->dof_init[d], 0, 0);
+			assert_near(m->dof_init[d], 0, 0);
 			assert_true(m->dof_lo[d] <= 0 && m->dof_hi[d] >= 0);
 			if (strncmp(jn, "knee", 4) == 0 || strncmp(jn, "elbow", 5) == 0) {
 				/* 0 = full extension, a bound */
-				assert_float_equal(m->dof_lo[d], 0, 0);
+				assert_near(m->dof_lo[d], 0, 0);
 				assert_true(m->dof_hi[d] > 120 * DEG);
 			} else {
 				assert_true(m->dof_lo[d] < 0 && m->dof_hi[d] > 0);
@@ -192,10 +194,10 @@ test_mass_limits_extent(void **unused)
 			if (strncmp(m->seg_name[m->geom_seg[g]], "foot", 4) == 0)
 				foot_lo = fmin(foot_lo, a);
 		}
-		assert_float_equal(lo, 0, 1e-3);
-		assert_float_equal(foot_lo, 0, 1e-3);
-		assert_float_equal(hi, defs[f].stature, 1e-3);
-		assert_float_equal(site_pos(m, s, "head.vertex")[1], defs[f].stature, 1e-9);
+		assert_near(lo, 0, 1e-3);
+		assert_near(foot_lo, 0, 1e-3);
+		assert_near(hi, defs[f].stature, 1e-3);
+		assert_near(site_pos(m, s, "head.vertex")[1], defs[f].stature, 1e-9);
 		/* every segment has geometry */
 		for (int i = 0; i < m->nseg; i++)
 			assert_true(m->seg_ngeom[i] > 0);
@@ -243,17 +245,17 @@ test_standing_balance(void **unused)
 	for (int k = 0; k < 2; k++) {
 		const double *b = site_pos(m, s, k ? "foot_r.balance" : "foot_l.balance");
 		const double *a = site_pos(m, s, k ? "foot_r.ankle" : "foot_l.ankle");
-		assert_float_equal(b[1], 0, 1e-9);
-		assert_float_equal(b[0], a[0], 1e-9);
+		assert_near(b[1], 0, 1e-9);
+		assert_near(b[0], a[0], 1e-9);
 		assert_true(b[2] - a[2] >= 0.02 && b[2] - a[2] <= 0.05);
 		/* heel and toes on the floor, heel behind the ankle, tip in front */
 		const double *heel = site_pos(m, s, k ? "foot_r.heel" : "foot_l.heel");
 		const double *tip = site_pos(m, s, k ? "toes_r.tip" : "toes_l.tip");
-		assert_float_equal(heel[1], 0, 1e-9);
-		assert_float_equal(tip[1], 0, 1e-9);
-		assert_float_equal(site_pos(m, s, k ? "toes_r.toe" : "toes_l.toe")[1], 0, 1e-9);
+		assert_near(heel[1], 0, 1e-9);
+		assert_near(tip[1], 0, 1e-9);
+		assert_near(site_pos(m, s, k ? "toes_r.toe" : "toes_l.toe")[1], 0, 1e-9);
 		assert_true(heel[2] < a[2] && tip[2] > b[2]);
-		assert_float_equal(tip[2] - heel[2], 0.152 * H, 1e-9);
+		assert_near(tip[2] - heel[2], 0.152 * H, 1e-9);
 	}
 	/* the shanks lean forward a few degrees, the line of gravity in front of the knee */
 	const double *knee = site_pos(m, s, "thigh_l.knee_l"), *ank = site_pos(m, s, "foot_l.ankle");
@@ -264,7 +266,7 @@ test_standing_balance(void **unused)
 	/* the lower torso site sits at the standing centre of mass */
 	const double *lt = site_pos(m, s, HUMAN_SITE_LOWER_TORSO);
 	for (int r = 0; r < 3; r++)
-		assert_float_equal(lt[r], s->com[r], 1e-9);
+		assert_near(lt[r], s->com[r], 1e-9);
 	/* the female figure balances as well */
 	struct model *f = build(1.628, 67.7, HUMAN_FEMALE);
 	struct state *t = state_make(f);
@@ -306,9 +308,9 @@ test_symmetry(void **unused)
 		if (!mirror_name(full, other, sizeof other))
 			continue;
 		const double *a = s->site_xf[k].p, *b = site_pos(m, s, other);
-		assert_float_equal(-a[0], b[0], 1e-12);
-		assert_float_equal(a[1], b[1], 1e-12);
-		assert_float_equal(a[2], b[2], 1e-12);
+		assert_near(-a[0], b[0], 1e-12);
+		assert_near(a[1], b[1], 1e-12);
+		assert_near(a[2], b[2], 1e-12);
 		pairs++;
 	}
 	assert_int_equal(pairs, 29);
@@ -320,15 +322,15 @@ test_symmetry(void **unused)
 		s->q[hr + d] = 0.4;
 		kin_update(m, s);
 		const double *fl = site_pos(m, s, "toes_l.tip"), *fr = site_pos(m, s, "toes_r.tip");
-		assert_float_equal(-fl[0], fr[0], 1e-12);
-		assert_float_equal(fl[1], fr[1], 1e-12);
-		assert_float_equal(fl[2], fr[2], 1e-12);
+		assert_near(-fl[0], fr[0], 1e-12);
+		assert_near(fl[1], fr[1], 1e-12);
+		assert_near(fl[2], fr[2], 1e-12);
 		/* and the value moved the foot */
 		assert_true(fabs(fl[0] - 0.089) + fabs(fl[1]) + fabs(fl[2] - 0.1645) > 0.01);
 	}
 	/* the mass distribution is symmetric: the centre of mass on the mid-plane */
 	state_reset(m, s);
-	assert_float_equal(s->com[0], 0, 1e-12);
+	assert_near(s->com[0], 0, 1e-12);
 	state_free(s);
 	model_free(m);
 }
@@ -454,9 +456,9 @@ test_reroot_keeps_frames(void **unused)
 		assert_int_equal(state_set_root(m, s, site(m, roots[r])), 0);
 		for (int k = 0; k < m->nsite; k++) {
 			for (int i = 0; i < 3; i++)
-				assert_float_equal(s->site_xf[k].p[i], before[k].p[i], 1e-9);
+				assert_near(s->site_xf[k].p[i], before[k].p[i], 1e-9);
 			for (int i = 0; i < 9; i++)
-				assert_float_equal(s->site_xf[k].r[i], before[k].r[i], 1e-9);
+				assert_near(s->site_xf[k].r[i], before[k].r[i], 1e-9);
 		}
 	}
 	free(before);
@@ -501,8 +503,8 @@ test_defaults(void **unused)
 {
 	(void)unused;
 	struct human_def d = human_default_def(HUMAN_MALE);
-	assert_float_equal(d.stature, 1.75, 0);
-	assert_float_equal(d.mass, 75, 0);
+	assert_near(d.stature, 1.75, 0);
+	assert_near(d.mass, 75, 0);
 	assert_int_equal(d.sex, HUMAN_MALE);
 	d = human_default_def(HUMAN_FEMALE);
 	assert_int_equal(d.sex, HUMAN_FEMALE);

@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "test_util.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -70,23 +72,23 @@ test_planar_arm_analytic(void **unused)
 	int tip = model_find_site(m, "l2.tip");
 	assert_true(tip >= 0);
 	double *p = s->site_xf[tip].p;
-	assert_float_equal(p[0], cos(a) + 0.5 * cos(a + c), 1e-14);
-	assert_float_equal(p[1], sin(a) + 0.5 * sin(a + c), 1e-14);
-	assert_float_equal(p[2], 0, 1e-14);
+	assert_near(p[0], cos(a) + 0.5 * cos(a + c), 1e-14);
+	assert_near(p[1], sin(a) + 0.5 * sin(a + c), 1e-14);
+	assert_near(p[2], 0, 1e-14);
 	/* centre of mass: (2 * mid of l1 + 1 * mid of l2) / 3 */
 	double cx = (2 * 0.5 * cos(a) + (cos(a) + 0.25 * cos(a + c))) / 3;
 	double cy = (2 * 0.5 * sin(a) + (sin(a) + 0.25 * sin(a + c))) / 3;
-	assert_float_equal(s->com[0], cx, 1e-14);
-	assert_float_equal(s->com[1], cy, 1e-14);
+	assert_near(s->com[0], cx, 1e-14);
+	assert_near(s->com[1], cy, 1e-14);
 	/* analytic Jacobian of the tip */
 	double J[6 * 2];
 	kin_site_jacobian(m, s, tip, J);
-	assert_float_equal(J[0], -sin(a) - 0.5 * sin(a + c), 1e-14);
-	assert_float_equal(J[1], -0.5 * sin(a + c), 1e-14);
-	assert_float_equal(J[2], cos(a) + 0.5 * cos(a + c), 1e-14);
-	assert_float_equal(J[3], 0.5 * cos(a + c), 1e-14);
-	assert_float_equal(J[5 * 2 + 0], 1, 1e-15); /* angular z */
-	assert_float_equal(J[5 * 2 + 1], 1, 1e-15);
+	assert_near(J[0], -sin(a) - 0.5 * sin(a + c), 1e-14);
+	assert_near(J[1], -0.5 * sin(a + c), 1e-14);
+	assert_near(J[2], cos(a) + 0.5 * cos(a + c), 1e-14);
+	assert_near(J[3], 0.5 * cos(a + c), 1e-14);
+	assert_near(J[5 * 2 + 0], 1, 1e-15); /* angular z */
+	assert_near(J[5 * 2 + 1], 1, 1e-15);
 	state_free(s);
 	model_free(m);
 }
@@ -188,7 +190,7 @@ test_jacobians_match_finite_differences(void **unused)
 				memcpy(pm, t->site_xf[site].p, sizeof pm);
 				memcpy(Rm, t->site_xf[site].r, sizeof Rm);
 				for (int r = 0; r < 3; r++)
-					assert_float_equal(J[r * n + d], (pp[r] - pm[r]) / (2 * h), 1e-7);
+					assert_near(J[r * n + d], (pp[r] - pm[r]) / (2 * h), 1e-7);
 				/* angular: skew(w) = dR/dq R^T */
 				const double *R = s->site_xf[site].r;
 				double W[9] = { 0 };
@@ -197,9 +199,9 @@ test_jacobians_match_finite_differences(void **unused)
 						for (int k = 0; k < 3; k++)
 							W[3 * i + j] += (Rp[3 * i + k] - Rm[3 * i + k]) /
 									(2 * h) * R[3 * j + k];
-				assert_float_equal(J[3 * n + d], W[7], 1e-7);
-				assert_float_equal(J[4 * n + d], W[2], 1e-7);
-				assert_float_equal(J[5 * n + d], W[3], 1e-7);
+				assert_near(J[3 * n + d], W[7], 1e-7);
+				assert_near(J[4 * n + d], W[2], 1e-7);
+				assert_near(J[5 * n + d], W[3], 1e-7);
 			}
 		}
 		kin_com_jacobian(m, s, Jc);
@@ -213,7 +215,7 @@ test_jacobians_match_finite_differences(void **unused)
 			t->q[d] -= 2 * h;
 			kin_update(m, t);
 			for (int r = 0; r < 3; r++)
-				assert_float_equal(Jc[r * n + d], (cp[r] - t->com[r]) / (2 * h), 1e-7);
+				assert_near(Jc[r * n + d], (cp[r] - t->com[r]) / (2 * h), 1e-7);
 		}
 		free(J);
 		free(Jc);
@@ -239,12 +241,12 @@ test_reroot_moves_nothing(void **unused)
 		assert_int_equal(state_set_root(m, s, site), 0);
 		for (int k = 0; k < m->nsite; k++) {
 			for (int r = 0; r < 3; r++)
-				assert_float_equal(s->site_xf[k].p[r], before[k].p[r], 1e-12);
+				assert_near(s->site_xf[k].p[r], before[k].p[r], 1e-12);
 			for (int r = 0; r < 9; r++)
-				assert_float_equal(s->site_xf[k].r[r], before[k].r[r], 1e-12);
+				assert_near(s->site_xf[k].r[r], before[k].r[r], 1e-12);
 		}
 		for (int r = 0; r < 3; r++)
-			assert_float_equal(s->com[r], com[r], 1e-12);
+			assert_near(s->com[r], com[r], 1e-12);
 	}
 	assert_int_equal(state_set_root(m, s, -1), -1);
 	assert_int_equal(state_set_root(m, s, m->nsite), -1);
@@ -270,9 +272,9 @@ test_joint_direction_independent_of_root(void **unused)
 			kin_joint_xform(m, s, j, &rel);
 			xform_mul(&s->site_xf[m->jnt_site_from[j]], &rel, &expect);
 			for (int r = 0; r < 3; r++)
-				assert_float_equal(expect.p[r], s->site_xf[m->jnt_site_to[j]].p[r], 1e-12);
+				assert_near(expect.p[r], s->site_xf[m->jnt_site_to[j]].p[r], 1e-12);
 			for (int r = 0; r < 9; r++)
-				assert_float_equal(expect.r[r], s->site_xf[m->jnt_site_to[j]].r[r], 1e-12);
+				assert_near(expect.r[r], s->site_xf[m->jnt_site_to[j]].r[r], 1e-12);
 		}
 	}
 	state_free(s);

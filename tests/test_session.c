@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "test_util.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -41,17 +43,17 @@ test_numbers_take_units_and_refuse_non_finite(void **unused)
 	(void)unused;
 	double v;
 	assert_int_equal(words_number("30deg", UNIT_ANGLE, &v), 0);
-	assert_float_equal(v, M_PI / 6, 1e-15);
+	assert_near(v, M_PI / 6, 1e-15);
 	assert_int_equal(words_number("12cm", UNIT_LENGTH, &v), 0);
-	assert_float_equal(v, 0.12, 1e-15);
+	assert_near(v, 0.12, 1e-15);
 	assert_int_equal(words_number("-2.5e-1", UNIT_NONE, &v), 0);
-	assert_float_equal(v, -0.25, 0);
+	assert_near(v, -0.25, 0);
 	const char *bad[] = { "nan", "inf", "-inf", "1e999", "0x10", "30deg", "", "1.2.3", "5kg", "deg" };
 	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
 		assert_int_equal(words_number(bad[i], i == 5 ? UNIT_LENGTH : UNIT_NONE, &v), -1);
 	double l[3];
 	assert_int_equal(words_list("1,2cm,3mm", UNIT_LENGTH, 3, l), 0);
-	assert_float_equal(l[1], 0.02, 1e-15);
+	assert_near(l[1], 0.02, 1e-15);
 	assert_int_equal(words_list("1,2", UNIT_LENGTH, 3, l), -1);
 	assert_int_equal(words_list("1,2,3,4", UNIT_LENGTH, 3, l), -1);
 	assert_int_equal(words_list("1,,3", UNIT_LENGTH, 3, l), -1);

@@ -1,0 +1,599 @@
+/* behave.c - the human figure's behaviours (Chapter 5, Appendix D) */
+#include "behave.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "human.h"
+#include "kin.h"
+#include "stance.h"
+
+#define W_FOOT 10.0    /* the feet and balance outweigh the rest: they carry the body */
+#define W_BALANCE 10.0
+#define W_PELVIS 2.0
+#define W_TORSO 2.0
+#define STEP_LIFT 0.08 /* m: how high a stepping foot rises */
+
+struct behave_params
+behave_default_params(void)
+{
+	struct behave_params p = { 0 };
+	p.foot[0] = p.foot[1] = FOOT_HOLD_GLOBAL;
+	p.heel[0] = p.heel[1] = HEEL_KEEP_ON_FLOOR;
+	p.torso = TORSO_KEEP_VERTICAL;
+	p.hand[0] = p.hand[1] = HAND_FREE;
+	p.hand_site[0] = p.hand_site[1] = -1;
+	p.spring_angle = STANCE_SPRING_ANGLE;
+	p.balance_follows_feet = 1;
+	p.pelvis_follows_feet = 1;
+	p.auto_root = 1;
+	p.step_when_losing_balance = 1;
+	p.step_when_twisted = 1;
+	p.twist_limit = 45 * M_PI / 180;
+	p.step_frames = 20;
+	return p;
+}
+
+static void
+rot_y(double angle, double dest[9])
+{
+	double c = cos(angle), s = sin(angle);
+	double r[9] = { c, 0, s, 0, 1, 0, -s, 0, c };
+	memcpy(dest, r, sizeof r);
+}
+
+static void
+mat_mul3(const double a[9], const double b[9], double dest[9])
+{
+	double t[9];
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			t[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
+	memcpy(dest, t, sizeof t);
+}
+
+static void
+mat_tmul3(const double a[9], const double b[9], double dest[9])
+{
+	double at[9];
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			at[3 * i + j] = a[3 * j + i];
+	mat_mul3(at, b, dest);
+}
+
+/* the heading of a foot: from its heel to its toe tip, about the vertical */
+static double
+foot_heading(const struct behave *b, const struct state *s, int side)
+{
+	const double *h = s->site_xf[b->s_heel[side]].p, *t = s->site_xf[b->s_tip[side]].p;
+	return atan2(t[0] - h[0], t[2] - h[2]);
+}
+
+/* the mean heading of the feet (a circular mean) */
+static double
+feet_heading(const struct behave *b, const struct state *s)
+{
+	double a = foot_heading(b, s, 0), c = foot_heading(b, s, 1);
+	return atan2(sin(a) + sin(c), cos(a) + cos(c));
+}
+
+/* ---- the constraints ----------------------------------------------------------- */
+
+static void
+toe_def(const struct behave *b, const struct state *s, int side, struct ik_constraint_def *d)
+{
+	*d = ik_constraint_default_def();
+	d->effector_site = b->s_toe[side];
+	d->goal_xf = s->site_xf[b->s_toe[side]];
+	d->weight = W_FOOT;
+	d->pos_weight = 0.5;
+	if (b->p.foot[side] == FOOT_PIVOT) { /* flat, free to turn about the vertical */
+		d->ori = IK_DIRECTION;
+		d->effector_axis[2] = 0, d->effector_axis[1] = 1;
+		d->goal_axis[0] = 0, d->goal_axis[1] = 1, d->goal_axis[2] = 0;
+		xform_identity(&d->goal_xf);
+		memcpy(d->goal_xf.p, s->site_xf[b->s_toe[side]].p, sizeof d->goal_xf.p);
+	} else {
+		d->ori = IK_FRAME;
+	}
+}
+
+static void
+heel_def(const struct behave *b, const struct state *s, int side, struct ik_constraint_def *d)
+{
+	*d = ik_constraint_default_def();
+	d->effector_site = b->s_heel[side];
+	d->pos = IK_PLANE; /* the floor: the heel's height, nothing else */
+	d->goal_axis[0] = 0, d->goal_axis[1] = 1, d->goal_axis[2] = 0;
+	d->goal_xf.p[1] = 0;
+	d->goal_xf.p[0] = s->site_xf[b->s_heel[side]].p[0];
+	d->goal_xf.p[2] = s->site_xf[b->s_heel[side]].p[2];
+	d->weight = W_FOOT / 2;
+	d->enabled = b->p.heel[side] == HEEL_KEEP_ON_FLOOR;
+}
+
+static void
+torso_def(const struct behave *b, const struct state *s, struct ik_constraint_def *d)
+{
+	*d = ik_constraint_default_def();
+	d->effector_site = b->s_chest;
+	d->start_joint = b->j_spine0;
+	d->pos = IK_POS_NONE;
+	d->pos_weight = 0;
+	d->weight = W_TORSO;
+	d->goal_xf = s->site_xf[b->s_chest];
+	if (b->p.torso == TORSO_HOLD_GLOBAL) {
+		d->ori = IK_FRAME;
+	} else {
+		d->ori = IK_DIRECTION;
+		d->effector_axis[2] = 0, d->effector_axis[1] = 1;
+		d->goal_axis[0] = 0, d->goal_axis[1] = 1, d->goal_axis[2] = 0;
+		xform_identity(&d->goal_xf);
+	}
+	d->enabled = b->p.torso != TORSO_FREE;
+}
+
+static void
+aim_def(int site, int start, const double point[3], int on, struct ik_constraint_def *d)
+{
+	*d = ik_constraint_default_def();
+	d->effector_site = site;
+	d->start_joint = start;
+	d->pos = IK_POS_NONE;
+	d->ori = IK_AIM;
+	d->pos_weight = 0;
+	d->effector_axis[0] = d->effector_axis[1] = 0, d->effector_axis[2] = 1;
+	memcpy(d->goal_xf.p, point, sizeof d->goal_xf.p);
+	d->enabled = on;
+}
+
+static void
+hand_def(const struct behave *b, const struct model *m, const struct state *s, int side,
+	 struct ik_constraint_def *d)
+{
+	*d = ik_constraint_default_def();
+	d->effector_site = b->s_palm[side];
+	d->start_joint = b->j_clav[side];
+	d->group = 1; /* after the body (§D.1.5) */
+	d->goal_xf = s->site_xf[b->s_palm[side]];
+	d->enabled = b->p.hand[side] != HAND_FREE;
+	switch (b->p.hand[side]) {
+	case HAND_FREE:
+	case HAND_HOLD_GLOBAL:
+		d->ori = IK_FRAME;
+		d->pos_weight = 0.5;
+		break;
+	case HAND_ON_HIPS: /* the palm on the side of the hip, elbows out: arms akimbo */
+		d->goal_site = b->s_hip[side];
+		xform_identity(&d->goal_xf);
+		d->goal_xf.p[0] = (side ? -1 : 1) * 0.07;
+		d->goal_xf.p[1] = 0.06;
+		break;
+	case HAND_ON_KNEES:
+		d->goal_site = b->s_knee[side];
+		xform_identity(&d->goal_xf);
+		d->goal_xf.p[1] = 0.05;
+		break;
+	case HAND_ON_SITE:
+		d->goal_site = b->p.hand_site[side] >= 0 && b->p.hand_site[side] < m->nsite
+				       ? b->p.hand_site[side]
+				       : -1;
+		xform_identity(&d->goal_xf);
+		d->ori = IK_FRAME;
+		d->pos_weight = 0.5;
+		d->enabled = d->goal_site >= 0;
+		break;
+	}
+}
+
+/* the balance constraint's goal from b->bal_point and the elevation */
+static void
+balance_goal(const struct behave *b, struct ik_constraint_def *d)
+{
+	d->pos = b->p.hold_elevation ? IK_POINT : IK_LINE;
+	xform_identity(&d->goal_xf);
+	d->goal_xf.p[0] = b->bal_point[0];
+	d->goal_xf.p[1] = b->elevation;
+	d->goal_xf.p[2] = b->bal_point[1];
+}
+
+static int
+find_all(struct behave *b, const struct model *m)
+{
+	static const char *const sfx[2] = { "l", "r" };
+	char name[64];
+	int bad = 0;
+#define SITE(dst, fmt, side)                                                   \
+	do {                                                                   \
+		snprintf(name, sizeof name, fmt, sfx[side], sfx[side]);        \
+		bad |= ((dst) = model_find_site(m, name)) < 0;                 \
+	} while (0)
+	for (int k = 0; k < 2; k++) {
+		SITE(b->s_toe[k], "toes_%s.toe%.0s", k);
+		SITE(b->s_heel[k], "foot_%s.heel%.0s", k);
+		SITE(b->s_tip[k], "toes_%s.tip%.0s", k);
+		SITE(b->s_eye[k], "eyeball_%s.gaze%.0s", k);
+		SITE(b->s_palm[k], "hand_%s.palm%.0s", k);
+		SITE(b->s_hip[k], "pelvis.hip_%s%.0s", k);
+		SITE(b->s_knee[k], "shank_%s.knee%.0s", k);
+		snprintf(name, sizeof name, "clavicle_%s", sfx[k]);
+		bad |= (b->j_clav[k] = model_find_joint(m, name)) < 0;
+		snprintf(name, sizeof name, "eye_%s", sfx[k]);
+		bad |= (b->j_eye[k] = model_find_joint(m, name)) < 0;
+	}
+#undef SITE
+	bad |= (b->s_pelvis = model_find_site(m, HUMAN_SITE_PELVIS)) < 0;
+	bad |= (b->s_lower = model_find_site(m, HUMAN_SITE_LOWER_TORSO)) < 0;
+	bad |= (b->s_chest = model_find_site(m, HUMAN_SITE_CHEST)) < 0;
+	bad |= (b->s_head = model_find_site(m, HUMAN_SITE_HEAD)) < 0;
+	bad |= (b->j_spine0 = model_find_joint(m, "spine_0")) < 0;
+	bad |= (b->j_neck = model_find_joint(m, "spine_17")) < 0;
+	return bad ? -1 : 0;
+}
+
+static int
+root_site_of(const struct behave *b, enum balance_root r)
+{
+	return r == BALANCE_ROOT_LEFT_FOOT ? b->s_toe[0]
+	       : r == BALANCE_ROOT_RIGHT_FOOT ? b->s_toe[1]
+					      : b->s_lower;
+}
+
+/* roots the figure anew; the foot that was the root holds where it is */
+static void
+set_root(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
+	 enum balance_root r)
+{
+	if (r == b->root)
+		return;
+	state_set_root(m, s, root_site_of(b, r));
+	for (int k = 0; k < 2; k++) {
+		struct ik_constraint_def d = *ik_get(ik, b->c_toe[k]);
+		if (b->p.foot[k] == FOOT_PIVOT)
+			memcpy(d.goal_xf.p, s->site_xf[b->s_toe[k]].p, sizeof d.goal_xf.p);
+		else
+			d.goal_xf = s->site_xf[b->s_toe[k]];
+		ik_set_goal(ik, b->c_toe[k], &d.goal_xf);
+	}
+	b->root = r;
+}
+
+int
+behave_attach(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
+	      const struct behave_params *p)
+{
+	memset(b, 0, sizeof *b);
+	b->p = p ? *p : behave_default_params();
+	if (find_all(b, m) < 0)
+		return -1;
+	kin_update(m, s);
+	b->leg_length = s->site_xf[b->s_hip[0]].p[1];
+	state_set_root(m, s, b->s_toe[0]);
+	b->root = BALANCE_ROOT_LEFT_FOOT;
+	struct ik_constraint_def d;
+	for (int k = 0; k < 2; k++) {
+		toe_def(b, s, k, &d);
+		b->c_toe[k] = ik_add(ik, m, &d);
+		heel_def(b, s, k, &d);
+		b->c_heel[k] = ik_add(ik, m, &d);
+	}
+	/* balance: the centre of mass, carried by the lower torso, over the balance point */
+	if (balance_measure(m, s, BALANCE_CONTACT, &b->bal) < 0)
+		return -1;
+	b->bal_x = b->bal.x;
+	b->bal_z = b->bal.z;
+	memcpy(b->bal_point, b->bal.point, sizeof b->bal_point);
+	b->elevation = s->com[1];
+	d = ik_constraint_default_def();
+	d.effector_site = b->s_lower;
+	d.com_effector = 1;
+	d.weight = W_BALANCE;
+	balance_goal(b, &d);
+	b->c_balance = ik_add(ik, m, &d);
+	/* the pelvis: its orientation relative to the feet's heading */
+	double head[9];
+	rot_y(feet_heading(b, s), head);
+	mat_tmul3(head, s->site_xf[b->s_pelvis].r, b->pelvis_turn);
+	d = ik_constraint_default_def();
+	d.effector_site = b->s_pelvis;
+	d.pos = IK_POS_NONE;
+	d.ori = IK_FRAME;
+	d.pos_weight = 0;
+	d.weight = W_PELVIS;
+	d.goal_xf = s->site_xf[b->s_pelvis];
+	b->c_pelvis = ik_add(ik, m, &d);
+	torso_def(b, s, &d);
+	b->c_torso = ik_add(ik, m, &d);
+	aim_def(b->s_head, b->j_neck, b->p.head_point, b->p.fixate_head, &d);
+	b->c_head = ik_add(ik, m, &d);
+	for (int k = 0; k < 2; k++) {
+		aim_def(b->s_eye[k], b->j_eye[k], b->p.eyes_point, b->p.fixate_eyes, &d);
+		b->c_eye[k] = ik_add(ik, m, &d);
+		hand_def(b, m, s, k, &d);
+		b->c_hand[k] = ik_add(ik, m, &d);
+	}
+	memcpy(b->com_fixed, s->com, sizeof b->com_fixed);
+	if (b->c_hand[1] < 0 || stance_limit_springs(ik, m, b->p.spring_angle, STANCE_SPRING_WEIGHT) < 0)
+		return -1;
+	return 0;
+}
+
+void
+behave_set_params(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
+		  const struct behave_params *p)
+{
+	b->p = *p;
+	struct ik_constraint_def d;
+	for (int k = 0; k < 2; k++) {
+		toe_def(b, s, k, &d);
+		ik_set(ik, m, b->c_toe[k], &d);
+		heel_def(b, s, k, &d);
+		ik_set(ik, m, b->c_heel[k], &d);
+		aim_def(b->s_eye[k], b->j_eye[k], p->eyes_point, p->fixate_eyes, &d);
+		ik_set(ik, m, b->c_eye[k], &d);
+		hand_def(b, m, s, k, &d);
+		ik_set(ik, m, b->c_hand[k], &d);
+	}
+	torso_def(b, s, &d);
+	ik_set(ik, m, b->c_torso, &d);
+	aim_def(b->s_head, b->j_neck, p->head_point, p->fixate_head, &d);
+	ik_set(ik, m, b->c_head, &d);
+	d = *ik_get(ik, b->c_balance);
+	if (p->hold_elevation && d.pos != IK_POINT)
+		b->elevation = s->com[1];
+	balance_goal(b, &d);
+	ik_set(ik, m, b->c_balance, &d);
+	stance_limit_springs(ik, m, p->spring_angle, STANCE_SPRING_WEIGHT);
+	if (p->root_through_com)
+		memcpy(b->com_fixed, s->com, sizeof b->com_fixed);
+}
+
+static void step_start(struct behave *b, struct state *s, struct ik *ik, int side,
+		       const struct xform *to);
+
+/* ---- active behaviours ------------------------------------------------------ */
+
+/* the stepping foot on its way: a straight line, lifted in the middle */
+static void
+step_advance(struct behave *b, const struct model *m, struct state *s, struct ik *ik)
+{
+	struct behave_step *st = &b->step;
+	st->frame++;
+	double t = (double)st->frame / st->frames;
+	if (t > 1)
+		t = 1;
+	struct xform g = st->to;
+	for (int i = 0; i < 3; i++)
+		g.p[i] = st->from.p[i] + t * (st->to.p[i] - st->from.p[i]);
+	g.p[1] += STEP_LIFT * sin(M_PI * t);
+	ik_set_goal(ik, b->c_toe[st->side], &g);
+	if (st->frame < st->frames)
+		return;
+	/* down: the heel goes back to the floor, and the balance point, held still
+	 * during the step, gets its parameters in the new support polygon */
+	st->active = 0;
+	b->steps_taken++;
+	kin_update(m, s);
+	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
+	balance_params_of(&b->bal, b->bal_point, &b->bal_x, &b->bal_z);
+	struct ik_constraint_def d;
+	heel_def(b, s, st->side, &d);
+	d.goal_xf.p[0] = s->site_xf[b->s_heel[st->side]].p[0];
+	d.goal_xf.p[2] = s->site_xf[b->s_heel[st->side]].p[2];
+	ik_set(ik, m, b->c_heel[st->side], &d);
+}
+
+/*
+ * Take step when losing balance (§D.3.1): when the balance point leaves the
+ * support polygon to the front or back, the foot bearing less weight steps
+ * so that the balance point ends midway between the feet.
+ */
+static void
+step_trigger(struct behave *b, const struct model *m, struct state *s, struct ik *ik)
+{
+	const struct balance *bal = &b->bal;
+	if (b->root == BALANCE_ROOT_LOWER_TORSO || fabs(bal->z) <= 1 || bal->npoly < 3)
+		return;
+	/* going down into a squat is no loss of balance: the feet stay (§5.5.2) */
+	double standing = 0.75 * b->leg_length;
+	if (s->com[1] < standing || (b->p.hold_elevation && b->elevation < standing))
+		return;
+	int side = b->root == BALANCE_ROOT_LEFT_FOOT ? 1 : 0; /* the foot not rooted */
+	const double *support = side ? bal->ref_l : bal->ref_r, *moving = side ? bal->ref_r : bal->ref_l;
+	double target[2] = { 2 * bal->point[0] - support[0], 2 * bal->point[1] - support[1] };
+	struct xform to = s->site_xf[b->s_toe[side]];
+	to.p[0] += target[0] - moving[0];
+	to.p[2] += target[1] - moving[1];
+	step_start(b, s, ik, side, &to);
+	(void)m;
+}
+
+static void
+step_start(struct behave *b, struct state *s, struct ik *ik, int side, const struct xform *to)
+{
+	struct behave_step *st = &b->step;
+	st->active = 1;
+	st->side = side;
+	st->frame = 0;
+	st->frames = b->p.step_frames > 0 ? b->p.step_frames : 20;
+	st->from = s->site_xf[b->s_toe[side]];
+	st->to = *to;
+	ik_enable(ik, b->c_heel[side], 0); /* the heel lifts with the foot */
+}
+
+/*
+ * Take step when pelvis is twisted (§D.3.2): past the limit the legs can
+ * turn no further, so the foot not rooted steps round the other, turned by
+ * the twist, and the feet's heading catches up with the pelvis.
+ */
+static void
+twist_trigger(struct behave *b, struct state *s, struct ik *ik)
+{
+	if (b->root == BALANCE_ROOT_LOWER_TORSO)
+		return;
+	const double *r = s->site_xf[b->s_pelvis].r;
+	double twist = atan2(r[2], r[8]) - feet_heading(b, s);
+	twist = atan2(sin(twist), cos(twist));
+	if (fabs(twist) <= b->p.twist_limit)
+		return;
+	int side = b->root == BALANCE_ROOT_LEFT_FOOT ? 1 : 0;
+	const double *pivot = s->site_xf[b->s_toe[1 - side]].p;
+	struct xform to = s->site_xf[b->s_toe[side]];
+	double turn[9], rel[3] = { to.p[0] - pivot[0], 0, to.p[2] - pivot[2] };
+	rot_y(twist, turn);
+	to.p[0] = pivot[0] + turn[0] * rel[0] + turn[2] * rel[2];
+	to.p[2] = pivot[2] + turn[6] * rel[0] + turn[8] * rel[2];
+	mat_mul3(turn, to.r, to.r);
+	step_start(b, s, ik, side, &to);
+}
+
+/* ---- the frame -------------------------------------------------------------- */
+
+struct ik_result
+behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
+	     const struct ik_options *opt, const struct ik_clock *clock)
+{
+	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
+	/* automatic rooting (§5.4.2.4), never in the middle of a step */
+	if (b->p.auto_root && !b->step.active && !b->p.root_through_com) {
+		double com_h = s->com[1];
+		set_root(b, m, s, ik, balance_choose_root(&b->bal, com_h, b->leg_length, b->root));
+	}
+	/* active behaviours: advance a step under way, or start one */
+	if (b->step.active)
+		step_advance(b, m, s, ik);
+	if (!b->step.active && b->p.step_when_losing_balance)
+		step_trigger(b, m, s, ik);
+	if (!b->step.active && b->p.step_when_twisted)
+		twist_trigger(b, s, ik);
+	/* balance point follows feet (§D.2.1): the same x and z whatever the feet do */
+	if (b->p.balance_follows_feet && !b->step.active)
+		balance_point_of(&b->bal, b->bal_x, b->bal_z, b->bal_point);
+	struct ik_constraint_def d = *ik_get(ik, b->c_balance);
+	balance_goal(b, &d);
+	ik_set_goal(ik, b->c_balance, &d.goal_xf);
+	/* pelvis follows feet orientation (§D.2.3) */
+	if (b->p.pelvis_follows_feet) {
+		struct xform g;
+		double head[9];
+		xform_identity(&g);
+		rot_y(feet_heading(b, s), head);
+		mat_mul3(head, b->pelvis_turn, g.r);
+		ik_set_goal(ik, b->c_pelvis, &g);
+	}
+	struct ik_result r = ik_solve(ik, m, s, opt, clock);
+	/* root through the centre of mass (§D.2.5): the whole figure slides back under it */
+	if (b->p.root_through_com) {
+		for (int i = 0; i < 3; i++)
+			s->root_xf.p[i] += b->com_fixed[i] - s->com[i];
+		kin_update(m, s);
+	}
+	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
+	return r;
+}
+
+/* ---- manipulation primitives ---------------------------------------------------- */
+
+void
+behave_move_foot(struct behave *b, const struct model *m, struct state *s, struct ik *ik, int side,
+		 const struct xform *goal)
+{
+	/* the support goes to the other foot (§5.5.1) */
+	enum balance_root other = side ? BALANCE_ROOT_LEFT_FOOT : BALANCE_ROOT_RIGHT_FOOT;
+	if (b->root != BALANCE_ROOT_LOWER_TORSO)
+		set_root(b, m, s, ik, other);
+	ik_set_goal(ik, b->c_toe[side], goal);
+	struct ik_constraint_def d = *ik_get(ik, b->c_heel[side]);
+	d.goal_xf.p[0] = goal->p[0], d.goal_xf.p[2] = goal->p[2];
+	ik_set_goal(ik, b->c_heel[side], &d.goal_xf);
+}
+
+void
+behave_move_com(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
+		double dx, double dz, double dy)
+{
+	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
+	double target[2] = { b->bal.point[0] + dx, b->bal.point[1] + dz };
+	/* the new parameters are held from now on (§5.5.2) */
+	balance_params_of(&b->bal, target, &b->bal_x, &b->bal_z);
+	memcpy(b->bal_point, target, sizeof b->bal_point);
+	if (dy != 0) { /* from now on the elevation is held, at its new height */
+		struct behave_params p = b->p;
+		p.hold_elevation = 1;
+		behave_set_params(b, m, s, ik, &p);
+		b->elevation = s->com[1] + dy;
+	}
+}
+
+int
+behave_bend_torso(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
+		  const double total[3], const struct spine_flavor *flavor)
+{
+	if (spine_apply(m, s, flavor, total, NULL) < 0)
+		return -1;
+	/* the bend is the torso's new orientation: hold it while balance moves the hips */
+	struct behave_params p = b->p;
+	p.torso = TORSO_HOLD_GLOBAL;
+	behave_set_params(b, m, s, ik, &p);
+	return 0;
+}
+
+void
+behave_rotate_pelvis(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
+		     const double r[9])
+{
+	(void)m;
+	(void)s;
+	(void)ik;
+	mat_mul3(r, b->pelvis_turn, b->pelvis_turn);
+}
+
+void
+behave_move_hand(struct behave *b, const struct model *m, struct state *s, struct ik *ik, int side,
+		 const struct xform *goal, int from_wrist)
+{
+	struct behave_params p = b->p;
+	p.hand[side] = HAND_HOLD_GLOBAL;
+	behave_set_params(b, m, s, ik, &p);
+	struct ik_constraint_def d = *ik_get(ik, b->c_hand[side]);
+	if (from_wrist) { /* position from the lower forearm: the wrist stays out of it (§5.5.5) */
+		char name[32];
+		snprintf(name, sizeof name, "forearm_%s.wrist_ref", side ? "r" : "l");
+		int site = model_find_site(m, name);
+		if (site >= 0) {
+			d.effector_site = site;
+			d.ori = IK_ORI_NONE;
+			d.pos_weight = 1;
+		}
+	}
+	d.goal_xf = *goal;
+	ik_set(ik, m, b->c_hand[side], &d);
+}
+
+void
+behave_move_head(struct behave *b, struct ik *ik, const double point[3])
+{
+	memcpy(b->p.head_point, point, sizeof b->p.head_point);
+	b->p.fixate_head = 1;
+	struct xform g;
+	xform_identity(&g);
+	memcpy(g.p, point, sizeof g.p);
+	ik_set_goal(ik, b->c_head, &g);
+	ik_enable(ik, b->c_head, 1);
+}
+
+void
+behave_move_eyes(struct behave *b, struct ik *ik, const double point[3])
+{
+	memcpy(b->p.eyes_point, point, sizeof b->p.eyes_point);
+	b->p.fixate_eyes = 1;
+	struct xform g;
+	xform_identity(&g);
+	memcpy(g.p, point, sizeof g.p);
+	for (int k = 0; k < 2; k++) {
+		ik_set_goal(ik, b->c_eye[k], &g);
+		ik_enable(ik, b->c_eye[k], 1);
+	}
+}

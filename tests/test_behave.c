@@ -1,0 +1,381 @@
+/*
+ * test_behave.c - the dissertation's figures as scenarios (Figures 5.3 to
+ * 5.10): the human's behaviours respond to the manipulation primitives as
+ * Chapter 5 describes. Each scenario also renders its final posture into
+ * build/test-output/behave-NAME.png for a person to look at.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "test_util.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "behave.h"
+#include "human.h"
+#include "kin.h"
+#include "render.h"
+#include "sink.h"
+#include "view.h"
+
+#define DEG (M_PI / 180)
+
+struct rig {
+	struct model *m;
+	struct state *s;
+	struct ik *ik;
+	struct behave b;
+	struct ik_options opt;
+};
+
+static void
+rig_make(struct rig *r, const struct behave_params *p)
+{
+	char err[200];
+	struct human_def hd = human_default_def(HUMAN_MALE);
+	r->m = human_build(&hd, err, sizeof err);
+	assert_non_null(r->m);
+	r->s = state_make(r->m);
+	r->ik = ik_make(r->m, 32);
+	assert_int_equal(behave_attach(&r->b, r->m, r->s, r->ik, p), 0);
+	r->opt = ik_default_options();
+	r->opt.budget_us = 0; /* frames run to convergence: the tests are about where things go */
+}
+
+static void
+rig_free(struct rig *r)
+{
+	ik_free(r->ik);
+	state_free(r->s);
+	model_free(r->m);
+}
+
+static void
+frames(struct rig *r, int n)
+{
+	for (int i = 0; i < n; i++)
+		behave_frame(&r->b, r->m, r->s, r->ik, &r->opt, NULL);
+}
+
+/* the final posture as a picture, for people */
+static void
+snapshot(const struct rig *r, const char *name, const double eye[3])
+{
+	char err[256], path[256];
+	mkdir("build", 0755);
+	mkdir("build/test-output", 0755);
+	struct render_def rd = render_default_def();
+	rd.max_w = 480, rd.max_h = 360;
+	struct render *ren = render_make(&rd, err, sizeof err);
+	assert_non_null(ren);
+	struct drawlist *dl = view_drawlist_make();
+	struct camera cam;
+	double target[3] = { r->s->com[0], 0.9, r->s->com[2] };
+	view_camera_default(&cam);
+	view_camera_aim(&cam, eye, target);
+	view_begin(dl, &cam, 480, 360);
+	view_add_figure(dl, r->m, r->s, 0);
+	view_add_balance(dl, r->m, r->s);
+	view_add_status(dl, name, NULL, 0);
+	struct frame f;
+	assert_int_equal(render_frame(ren, dl, 0, &f), 0);
+	snprintf(path, sizeof path, "build/test-output/behave-%s.png", name);
+	struct sink *png = sink_png_latest(path, err, sizeof err);
+	assert_non_null(png);
+	assert_int_equal(sink_write(png, &f, err, sizeof err), 0);
+	sink_close(png);
+	view_drawlist_free(dl);
+	render_free(ren);
+}
+
+static const double FRONT[3] = { 1.6, 1.4, 2.6 };
+
+static double
+dist2(const double a[2], const double b[2])
+{
+	return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]));
+}
+
+/* Figure 5.3: moving a foot keeps the weight distribution (x, z) */
+static void
+move_left_foot(int follow, double *dx, double *dz, double *moved_bp)
+{
+	struct behave_params p = behave_default_params();
+	p.balance_follows_feet = follow;
+	struct rig r;
+	rig_make(&r, &p);
+	frames(&r, 5);
+	double x0 = r.b.bal.x, z0 = r.b.bal.z, bp0[2] = { r.b.bal.point[0], r.b.bal.point[1] };
+	struct xform goal = r.s->site_xf[r.b.s_toe[0]];
+	goal.p[2] += 0.20; /* 20 cm forward */
+	goal.p[0] += 0.05; /* and 5 cm out */
+	behave_move_foot(&r.b, r.m, r.s, r.ik, BEHAVE_LEFT, &goal);
+	frames(&r, 40);
+	/* the foot got there */
+	for (int i = 0; i < 3; i++)
+		assert_near(r.s->site_xf[r.b.s_toe[0]].p[i], goal.p[i], 2e-3);
+	*dx = r.b.bal.x - x0;
+	*dz = r.b.bal.z - z0;
+	*moved_bp = dist2(r.b.bal.point, bp0);
+	snapshot(&r, follow ? "fig5.3-foot-moved" : "fig5.3-balance-point-fixed", FRONT);
+	rig_free(&r);
+}
+
+static void
+test_fig_5_3_balance_point_follows_feet(void **unused)
+{
+	(void)unused;
+	double dx, dz, moved;
+	move_left_foot(1, &dx, &dz, &moved);
+	printf("follows: x %+.4f z %+.4f, point moved %.1f mm\n", dx, dz, 1e3 * moved);
+	assert_true(fabs(dx) < 0.02 && fabs(dz) < 0.02);
+	assert_true(moved > 0.03); /* it did move, with the feet */
+	move_left_foot(0, &dx, &dz, &moved);
+	printf("fixed: x %+.4f z %+.4f, point moved %.1f mm\n", dx, dz, 1e3 * moved);
+	assert_true(moved < 5e-3); /* without the behaviour it stays put in space */
+}
+
+/* Figure 5.4: shifting the centre of mass with the feet held */
+static void
+test_fig_5_4_shift_com_feet_held(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	double feet0[2][3];
+	for (int k = 0; k < 2; k++)
+		memcpy(feet0[k], r.s->site_xf[r.b.s_toe[k]].p, sizeof feet0[k]);
+	behave_move_com(&r.b, r.m, r.s, r.ik, 0.07, 0, 0); /* 7 cm to the left */
+	frames(&r, 30);
+	for (int k = 0; k < 2; k++)
+		for (int i = 0; i < 3; i++)
+			assert_near(r.s->site_xf[r.b.s_toe[k]].p[i], feet0[k][i], 1e-3);
+	double com[2] = { r.s->com[0], r.s->com[2] };
+	printf("centre of mass %.2f mm from the new balance point; x %.3f\n",
+	       1e3 * dist2(com, r.b.bal_point), r.b.bal.x);
+	assert_true(dist2(com, r.b.bal_point) < 5e-3);
+	assert_true(r.b.bal.x < 0.3); /* the weight went to the left foot */
+	assert_int_equal(r.b.root, BALANCE_ROOT_LEFT_FOOT);
+	snapshot(&r, "fig5.4-com-shifted", FRONT);
+	rig_free(&r);
+}
+
+/* Figure 5.5: lowering the centre of mass squats, hips square, and roots the lower torso */
+static void
+test_fig_5_5_squat_reroots_at_the_lower_torso(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	double h0 = r.s->com[1];
+	behave_move_com(&r.b, r.m, r.s, r.ik, 0, 0, -0.40);
+	frames(&r, 60);
+	printf("centre of mass %.3f -> %.3f m (leg %.3f), root %d\n", h0, r.s->com[1],
+	       r.b.leg_length, r.b.root);
+	assert_true(r.s->com[1] < h0 - 0.25);
+	assert_int_equal(r.b.root, BALANCE_ROOT_LOWER_TORSO);
+	assert_true(r.s->com[1] < 0.7 * r.b.leg_length + 0.05);
+	/* hips square: the pelvis's left-right axis stays level and square to the feet */
+	const double *pr = r.s->site_xf[r.b.s_pelvis].r;
+	assert_true(fabs(pr[3]) < sin(3 * DEG)); /* x axis has no vertical part */
+	snapshot(&r, "fig5.5-squat", FRONT);
+	rig_free(&r);
+}
+
+/* Figure 5.6: dragging the centre of mass forward past the feet takes a step */
+static void
+test_fig_5_6_step_when_losing_balance(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	behave_move_com(&r.b, r.m, r.s, r.ik, 0, 0.35, 0);
+	frames(&r, 60);
+	printf("steps %d, margin %.3f m\n", r.b.steps_taken, r.b.bal.margin);
+	assert_true(r.b.steps_taken >= 1);
+	assert_false(r.b.step.active);
+	assert_true(r.b.bal.margin > 0); /* the balance point lies inside the new polygon */
+	double side[3] = { 2.8, 1.3, 0.6 };
+	snapshot(&r, "fig5.6-step", side);
+	rig_free(&r);
+}
+
+/* Figure 5.7: bending forward 45 degrees shifts the hips back, balanced, feet planted */
+static void
+test_fig_5_7_bend_torso_keeps_balance(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	double feet0[2][3], hips0 = r.s->site_xf[r.b.s_pelvis].p[2];
+	for (int k = 0; k < 2; k++)
+		memcpy(feet0[k], r.s->site_xf[r.b.s_toe[k]].p, sizeof feet0[k]);
+	double total[3] = { 45 * DEG, 0, 0 };
+	struct spine_flavor waist = spine_bend_from_waist();
+	assert_int_equal(behave_bend_torso(&r.b, r.m, r.s, r.ik, total, &waist), 0);
+	frames(&r, 40);
+	double hips = r.s->site_xf[r.b.s_pelvis].p[2];
+	double com[2] = { r.s->com[0], r.s->com[2] };
+	printf("hips moved %.1f cm back; centre of mass %.2f mm from the balance point\n",
+	       100 * (hips0 - hips), 1e3 * dist2(com, r.b.bal_point));
+	assert_true(hips < hips0 - 0.03);
+	assert_true(dist2(com, r.b.bal_point) < 5e-3);
+	for (int k = 0; k < 2; k++)
+		for (int i = 0; i < 3; i++)
+			assert_near(r.s->site_xf[r.b.s_toe[k]].p[i], feet0[k][i], 1e-3);
+	double side[3] = { 2.8, 1.3, 0.6 };
+	snapshot(&r, "fig5.7-bend", side);
+	rig_free(&r);
+}
+
+/* hands on hips survive a torso bend (§D.1.5) */
+static void
+test_hands_on_hips_survive_a_bend(void **unused)
+{
+	(void)unused;
+	struct behave_params p = behave_default_params();
+	p.hand[0] = p.hand[1] = HAND_ON_HIPS;
+	struct rig r;
+	rig_make(&r, &p);
+	frames(&r, 30);
+	double total[3] = { 30 * DEG, 10 * DEG, 0 };
+	struct spine_flavor waist = spine_bend_from_waist();
+	behave_bend_torso(&r.b, r.m, r.s, r.ik, total, &waist);
+	frames(&r, 40);
+	for (int k = 0; k < 2; k++) {
+		double pe, oe;
+		ik_constraint_error(r.ik, r.m, r.s, r.b.c_hand[k], &pe, &oe);
+		assert_true(pe < 2e-3);
+	}
+	snapshot(&r, "hands-on-hips-bent", FRONT);
+	rig_free(&r);
+}
+
+/* Figure 5.8: curling the pelvis with "keep vertical" leaves the chest vertical */
+static void
+test_fig_5_8_rotate_pelvis_keeps_chest_vertical(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	double q[4], r9[9], axis[3] = { 1, 0, 0 };
+	mathx_quat_axis_angle(axis, 20 * DEG, q); /* curl the hips under */
+	mathx_quat_to_mat(q, r9);
+	behave_rotate_pelvis(&r.b, r.m, r.s, r.ik, r9);
+	frames(&r, 30);
+	const double *cr = r.s->site_xf[r.b.s_chest].r, *pr = r.s->site_xf[r.b.s_pelvis].r;
+	double chest_tilt = acos(fmin(1, cr[4])) / DEG, pelvis_tilt = acos(fmin(1, pr[4])) / DEG;
+	printf("pelvis tilted %.1f deg, chest %.2f deg from vertical\n", pelvis_tilt, chest_tilt);
+	assert_true(pelvis_tilt > 12);
+	assert_true(chest_tilt < 2);
+	double side[3] = { 2.8, 1.3, 0.6 };
+	snapshot(&r, "fig5.8-pelvis-curled", side);
+	rig_free(&r);
+}
+
+static void
+test_fig_5_8_twisting_the_pelvis_takes_a_step(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	double q[4], r9[9], axis[3] = { 0, 1, 0 };
+	mathx_quat_axis_angle(axis, 70 * DEG, q);
+	mathx_quat_to_mat(q, r9);
+	behave_rotate_pelvis(&r.b, r.m, r.s, r.ik, r9);
+	r.b.p.pelvis_follows_feet = 1;
+	frames(&r, 80);
+	printf("steps after a 70 deg twist: %d\n", r.b.steps_taken);
+	assert_true(r.b.steps_taken >= 1);
+	snapshot(&r, "fig5.8-twist-step", FRONT);
+	rig_free(&r);
+}
+
+/* Figures 5.9 and 5.10: the hand reaches, head and eyes keep fixating, the body holds */
+static void
+test_fig_5_9_5_10_hand_head_eyes(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	double look[3] = { 0.5, 1.2, 2.0 };
+	behave_move_head(&r.b, r.ik, look);
+	behave_move_eyes(&r.b, r.ik, look);
+	double feet0[2][3];
+	for (int k = 0; k < 2; k++)
+		memcpy(feet0[k], r.s->site_xf[r.b.s_toe[k]].p, sizeof feet0[k]);
+	struct xform g = r.s->site_xf[r.b.s_palm[0]];
+	g.p[1] += 0.35;
+	g.p[2] += 0.30;
+	behave_move_hand(&r.b, r.m, r.s, r.ik, BEHAVE_LEFT, &g, 0);
+	frames(&r, 40);
+	double pe, oe;
+	ik_constraint_error(r.ik, r.m, r.s, r.b.c_hand[0], &pe, &oe);
+	assert_true(pe < 1e-3);
+	for (int k = 0; k < 2; k++)
+		for (int i = 0; i < 3; i++)
+			assert_near(r.s->site_xf[r.b.s_toe[k]].p[i], feet0[k][i], 1e-3);
+	/* the head and both eyes aim at the point */
+	int aims[3] = { r.b.c_head, r.b.c_eye[0], r.b.c_eye[1] };
+	for (int i = 0; i < 3; i++) {
+		ik_constraint_error(r.ik, r.m, r.s, aims[i], &pe, &oe);
+		assert_true(oe < 1 * DEG);
+	}
+	/* move the body: the fixation holds */
+	behave_move_com(&r.b, r.m, r.s, r.ik, 0.05, 0.03, 0);
+	frames(&r, 30);
+	for (int i = 0; i < 3; i++) {
+		ik_constraint_error(r.ik, r.m, r.s, aims[i], &pe, &oe);
+		assert_true(oe < 1 * DEG);
+	}
+	snapshot(&r, "fig5.9-reach-and-look", FRONT);
+	rig_free(&r);
+}
+
+static void
+test_hands_on_hips(void **unused)
+{
+	(void)unused;
+	struct behave_params p = behave_default_params();
+	p.hand[0] = p.hand[1] = HAND_ON_HIPS;
+	struct rig r;
+	rig_make(&r, &p);
+	frames(&r, 40);
+	for (int k = 0; k < 2; k++) {
+		double pe, oe;
+		ik_constraint_error(r.ik, r.m, r.s, r.b.c_hand[k], &pe, &oe);
+		assert_true(pe < 2e-3);
+	}
+	snapshot(&r, "hands-on-hips", FRONT);
+	rig_free(&r);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_fig_5_3_balance_point_follows_feet),
+		cmocka_unit_test(test_fig_5_4_shift_com_feet_held),
+		cmocka_unit_test(test_fig_5_5_squat_reroots_at_the_lower_torso),
+		cmocka_unit_test(test_fig_5_6_step_when_losing_balance),
+		cmocka_unit_test(test_fig_5_7_bend_torso_keeps_balance),
+		cmocka_unit_test(test_hands_on_hips_survive_a_bend),
+		cmocka_unit_test(test_fig_5_8_rotate_pelvis_keeps_chest_vertical),
+		cmocka_unit_test(test_fig_5_8_twisting_the_pelvis_takes_a_step),
+		cmocka_unit_test(test_fig_5_9_5_10_hand_head_eyes),
+		cmocka_unit_test(test_hands_on_hips),
+	};
+	return cmocka_run_group_tests_name("behave", tests, NULL, NULL);
+}
