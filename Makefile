@@ -129,7 +129,7 @@ $(PEER_BENCH): build/rel/bench/%: tools/bench/%.cpp | deps
 
 # C benchmarks that need no peer run on their own; the others are run by the
 # Python orchestrators (tools/bench/*.py), which measure ours and the peers
-BENCH_STANDALONE := build/rel/bench/ik_body
+BENCH_STANDALONE := build/rel/bench/ik_body build/rel/bench/behave_bench
 
 bench: deps $(rel_BENCH) $(rel_TOOLS) $(PEER_BENCH)
 	@set -e; for b in $(BENCH_STANDALONE); do echo "== $$b"; $$b; done

@@ -110,7 +110,7 @@ heel_def(const struct behave *b, const struct state *s, int side, struct ik_cons
 	d->goal_xf.p[1] = 0;
 	d->goal_xf.p[0] = s->site_xf[b->s_heel[side]].p[0];
 	d->goal_xf.p[2] = s->site_xf[b->s_heel[side]].p[2];
-	d->weight = W_FOOT / 2;
+	d->weight = 10 * W_FOOT; /* metres against the radians of the torso: heels stay down */
 	d->enabled = b->p.heel[side] == HEEL_KEEP_ON_FLOOR;
 }
 
@@ -520,9 +520,11 @@ behave_move_com(struct behave *b, const struct model *m, struct state *s, struct
 	balance_params_of(&b->bal, target, &b->bal_x, &b->bal_z);
 	memcpy(b->bal_point, target, sizeof b->bal_point);
 	if (dy != 0) { /* from now on the elevation is held, at its new height */
-		struct behave_params p = b->p;
-		p.hold_elevation = 1;
-		behave_set_params(b, m, s, ik, &p);
+		if (!b->p.hold_elevation) {
+			struct behave_params p = b->p;
+			p.hold_elevation = 1;
+			behave_set_params(b, m, s, ik, &p);
+		}
 		b->elevation = s->com[1] + dy;
 	}
 }
@@ -554,19 +556,23 @@ void
 behave_move_hand(struct behave *b, const struct model *m, struct state *s, struct ik *ik, int side,
 		 const struct xform *goal, int from_wrist)
 {
+	char name[32];
+	snprintf(name, sizeof name, "forearm_%s.wrist_ref", side ? "r" : "l");
+	int wrist = model_find_site(m, name);
+	int effector = from_wrist && wrist >= 0 ? wrist : b->s_palm[side];
+	/* dragging: the same hold, only the goal moves (no chain is rebuilt) */
+	if (b->p.hand[side] == HAND_HOLD_GLOBAL && ik_get(ik, b->c_hand[side])->effector_site == effector) {
+		ik_set_goal(ik, b->c_hand[side], goal);
+		return;
+	}
 	struct behave_params p = b->p;
 	p.hand[side] = HAND_HOLD_GLOBAL;
 	behave_set_params(b, m, s, ik, &p);
 	struct ik_constraint_def d = *ik_get(ik, b->c_hand[side]);
-	if (from_wrist) { /* position from the lower forearm: the wrist stays out of it (§5.5.5) */
-		char name[32];
-		snprintf(name, sizeof name, "forearm_%s.wrist_ref", side ? "r" : "l");
-		int site = model_find_site(m, name);
-		if (site >= 0) {
-			d.effector_site = site;
-			d.ori = IK_ORI_NONE;
-			d.pos_weight = 1;
-		}
+	if (effector == wrist) { /* position from the lower forearm: the wrist stays out of it (§5.5.5) */
+		d.effector_site = wrist;
+		d.ori = IK_ORI_NONE;
+		d.pos_weight = 1;
 	}
 	d.goal_xf = *goal;
 	ik_set(ik, m, b->c_hand[side], &d);
