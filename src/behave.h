@@ -83,8 +83,11 @@ struct behave_step {
 	struct xform from, to;
 };
 
+#define BEHAVE_NCON 12 /* the natural constraints: toes, heels, balance, pelvis, torso, head, eyes, hands */
+
 struct behave {
 	struct behave_params p;
+	struct ik_constraint_def def[BEHAVE_NCON]; /* kept while the solver is refilled */
 	/* the constraints' indices in the ik */
 	int c_toe[2], c_heel[2], c_balance, c_pelvis, c_torso, c_head, c_eye[2], c_hand[2];
 	/* sites and joints used every frame */
@@ -102,6 +105,7 @@ struct behave {
 	struct balance bal;       /* measured this frame */
 	struct behave_step step;
 	int steps_taken;
+	int detached; /* def[] holds the constraints; they are not (yet) in the solver */
 };
 
 /*
@@ -120,6 +124,27 @@ int behave_attach(struct behave *b, const struct model *m, struct state *s, stru
 struct ik_result behave_frame(struct behave *b, const struct model *m, struct state *s,
 			      struct ik *ik, const struct ik_options *opt,
 			      const struct ik_clock *clock);
+
+/*
+ * The solver is about to be cleared and refilled (a figure's constraint set
+ * changed): keep the behaviour's constraints, then add them back after the
+ * others. behave_restore_constraints returns 0, or -1 when the ik is full.
+ */
+void behave_keep_constraints(struct behave *b, const struct ik *ik);
+int behave_restore_constraints(struct behave *b, const struct model *m, struct ik *ik);
+
+/* the behaviour's constraint k (0..BEHAVE_NCON-1) as it stands */
+const struct ik_constraint_def *behave_def(const struct behave *b, const struct ik *ik, int k);
+
+/*
+ * Parameters and state as numbers, for session files and the journal:
+ * behave_pack writes at most max values and returns how many it needs;
+ * behave_unpack rebuilds b for model m from them (its constraints then
+ * come from def[], set by the caller, at the next behave_restore_constraints).
+ * Returns 0, or -1 for a wrong count or a figure that is not a human.
+ */
+int behave_pack(const struct behave *b, double *dest, int max);
+int behave_unpack(struct behave *b, const struct model *m, const double *v, int n);
 
 /* applies changed parameters (foot, heel, torso, head, eyes, hands) to the constraints */
 void behave_set_params(struct behave *b, const struct model *m, struct state *s, struct ik *ik,

@@ -15,6 +15,7 @@ env_init(struct env *e)
 static void
 free_figure(struct env_figure *f)
 {
+	free(f->behave);
 	ik_free(f->ik);
 	state_free(f->state);
 	model_free(f->model);
@@ -71,7 +72,7 @@ env_add_figure(struct env *e, struct model *model, const char *name, int is_huma
 	}
 	struct env_figure *f = &e->fig[slot];
 	f->state = state_make(model);
-	f->ik = ik_make(model, ENV_MAX_CONSTRAINTS);
+	f->ik = ik_make(model, ENV_MAX_CONSTRAINTS + BEHAVE_NCON);
 	if (!f->state || !f->ik) {
 		state_free(f->state);
 		ik_free(f->ik);
@@ -216,10 +217,15 @@ env_sync_solver(struct env *e, int fig)
 	struct env_figure *f = &e->fig[fig];
 	if (!f->ik_stale)
 		return;
+	/* the behaviours' own constraints go after the client's */
+	if (f->behave)
+		behave_keep_constraints(f->behave, f->ik);
 	ik_clear(f->ik);
 	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++)
 		if (e->con[i].gen && e->con[i].fig == fig)
 			ik_add(f->ik, f->model, &e->con[i].def);
+	if (f->behave)
+		behave_restore_constraints(f->behave, f->model, f->ik);
 	f->ik_stale = 0;
 }
 

@@ -11,6 +11,7 @@
 
 #include <stdint.h>
 
+#include "behave.h"
 #include "human.h"
 #include "ik.h"
 #include "model.h"
@@ -41,6 +42,7 @@ struct env_figure {
 	struct state *state;
 	struct ik *ik;
 	int ik_stale; /* the constraint set changed since the solver was filled */
+	struct behave *behave; /* the human's behaviours when switched on, else NULL */
 };
 
 struct env_constraint {

@@ -39,6 +39,8 @@ write_all(int fd, const char *p, size_t n)
 	return 0;
 }
 
+static uint64_t figure_hash(const struct env_figure *f);
+
 /* the current posture hashes, so only later solver changes are recorded */
 static void
 note_postures(struct journal *j, const struct daemon *d)
@@ -46,7 +48,7 @@ note_postures(struct journal *j, const struct daemon *d)
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
 		const struct env_figure *f = &d->env.fig[i];
 		j->posture_gen[i] = f->gen;
-		j->posture_hash[i] = f->gen ? state_hash(f->model, f->state) : 0;
+		j->posture_hash[i] = f->gen ? figure_hash(f) : 0;
 	}
 }
 
@@ -245,6 +247,28 @@ record(struct journal *j, char kind, const char *body, size_t len)
 	return rc;
 }
 
+/* a figure's posture, and its behaviours' state and goals, as one number */
+static uint64_t
+figure_hash(const struct env_figure *f)
+{
+	uint64_t h = state_hash(f->model, f->state);
+	if (!f->behave)
+		return h;
+	double v[256];
+	int n = behave_pack(f->behave, v, 256);
+	const unsigned char *p = (const unsigned char *)v;
+	for (size_t i = 0; i < sizeof *v * (size_t)n; i++)
+		h = (h ^ p[i]) * 1099511628211ull;
+	for (int k = 0; k < BEHAVE_NCON; k++) {
+		const struct ik_constraint_def *d = behave_def(f->behave, f->ik, k);
+		const unsigned char *q = (const unsigned char *)&d->goal_xf;
+		for (size_t i = 0; i < sizeof d->goal_xf; i++)
+			h = (h ^ q[i]) * 1099511628211ull;
+		h = (h ^ (unsigned)d->enabled) * 1099511628211ull;
+	}
+	return h;
+}
+
 int
 journal_postures(struct journal *j, const struct daemon *d)
 {
@@ -252,7 +276,7 @@ journal_postures(struct journal *j, const struct daemon *d)
 		const struct env_figure *f = &d->env.fig[i];
 		if (!f->gen)
 			continue;
-		uint64_t h = state_hash(f->model, f->state);
+		uint64_t h = figure_hash(f);
 		if (j->posture_gen[i] == f->gen && j->posture_hash[i] == h)
 			continue;
 		char *buf = NULL;
@@ -262,10 +286,14 @@ journal_postures(struct journal *j, const struct daemon *d)
 			return -1;
 		session_write_figure_posture(&d->env, i, m);
 		fclose(m);
-		/* two statements: root, then q */
-		char *nl = memchr(buf, '\n', len);
-		int rc = !nl || record(j, 'P', buf, (size_t)(nl - buf)) < 0 ||
-			 record(j, 'P', nl + 1, len - (size_t)(nl + 1 - buf) - 1) < 0;
+		/* one record a statement: root, q, and a behaving figure's state */
+		int rc = 0;
+		for (char *line = buf, *nl; rc == 0 && line < buf + len; line = nl + 1) {
+			nl = memchr(line, '\n', (size_t)(buf + len - line));
+			if (!nl)
+				break;
+			rc = record(j, 'P', line, (size_t)(nl - line));
+		}
 		free(buf);
 		if (rc)
 			return -1;

@@ -231,6 +231,8 @@ telemetry_event(struct loop *L, int fig, const struct ik_result *r, uint64_t bud
 static int
 has_work(const struct env *e, int fig)
 {
+	if (e->fig[fig].behave)
+		return 1;
 	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++)
 		if (e->con[i].gen && e->con[i].fig == fig && e->con[i].def.enabled)
 			return 1;
@@ -259,7 +261,9 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 		struct ik_options opt = ik_default_options();
 		opt.budget_us = budget_us / (uint64_t)busy; /* an equal share each */
 		uint64_t t0 = real_now(NULL);
-		struct ik_result r = ik_solve(f->ik, f->model, f->state, &opt, clock);
+		struct ik_result r = f->behave ? behave_frame(f->behave, f->model, f->state, f->ik, &opt,
+							      clock)
+					       : ik_solve(f->ik, f->model, f->state, &opt, clock);
 		double us = (double)(real_now(NULL) - t0);
 		L->d.stats.ik_us += us;
 		L->d.stats.iterations += r.iterations;

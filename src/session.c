@@ -45,6 +45,43 @@ write_figure_posture(const struct env_figure *fg, FILE *f)
 	fprintf(f, "\n");
 }
 
+/* the fields of a constraint's definition, after its head */
+static void
+write_def(FILE *f, const struct model *m, const struct ik_constraint_def *d)
+{
+	char site[2 * MODEL_NAME_MAX];
+	fprintf(f, " enabled=%d effector=%s", d->enabled,
+		model_site_fullname(m, d->effector_site, site, sizeof site));
+	fprintf(f, " effoff=");
+	write_xform(f, &d->effector_offset);
+	fprintf(f, " goalsite=%s",
+		d->goal_site >= 0 ? model_site_fullname(m, d->goal_site, site, sizeof site) : "-");
+	fprintf(f, " goal=");
+	write_xform(f, &d->goal_xf);
+	fprintf(f, " pos=%s ori=%s axis=", pos_names[d->pos], ori_names[d->ori]);
+	write_vec(f, d->goal_axis, 3);
+	fprintf(f, " effaxis=");
+	write_vec(f, d->effector_axis, 3);
+	fprintf(f, " posweight=%.17g weight=%.17g start=%s group=%d com=%d\n", d->pos_weight,
+		d->weight, d->start_joint >= 0 ? m->jnt_name[d->start_joint] : "-", d->group,
+		d->com_effector);
+}
+
+/* a behaving figure: its packed parameters and state, then its constraints */
+static void
+write_behave(const struct env_figure *fg, FILE *f)
+{
+	double v[256];
+	int n = behave_pack(fg->behave, v, 256);
+	fprintf(f, "behave %s ", fg->name);
+	write_vec(f, v, n);
+	fprintf(f, "\n");
+	for (int k = 0; k < BEHAVE_NCON; k++) {
+		fprintf(f, "bdef %s %d", fg->name, k);
+		write_def(f, fg->model, behave_def(fg->behave, fg->ik, k));
+	}
+}
+
 int
 session_write(const struct env *e, FILE *f)
 {
@@ -68,25 +105,12 @@ session_write(const struct env *e, FILE *f)
 			continue;
 		const struct env_figure *fg = &e->fig[c->fig];
 		const struct model *m = fg->model;
-		const struct ik_constraint_def *d = &c->def;
-		char site[2 * MODEL_NAME_MAX];
-		fprintf(f, "constraint %s slot=%d gen=%u figure=%s enabled=%d effector=%s", c->name, i,
-			c->gen, fg->name, d->enabled,
-			model_site_fullname(m, d->effector_site, site, sizeof site));
-		fprintf(f, " effoff=");
-		write_xform(f, &d->effector_offset);
-		fprintf(f, " goalsite=%s",
-			d->goal_site >= 0 ? model_site_fullname(m, d->goal_site, site, sizeof site) : "-");
-		fprintf(f, " goal=");
-		write_xform(f, &d->goal_xf);
-		fprintf(f, " pos=%s ori=%s axis=", pos_names[d->pos], ori_names[d->ori]);
-		write_vec(f, d->goal_axis, 3);
-		fprintf(f, " effaxis=");
-		write_vec(f, d->effector_axis, 3);
-		fprintf(f, " posweight=%.17g weight=%.17g start=%s group=%d com=%d\n", d->pos_weight,
-			d->weight, d->start_joint >= 0 ? m->jnt_name[d->start_joint] : "-", d->group,
-			d->com_effector);
+		fprintf(f, "constraint %s slot=%d gen=%u figure=%s", c->name, i, c->gen, fg->name);
+		write_def(f, m, &c->def);
 	}
+	for (int i = 0; i < ENV_MAX_FIGURES; i++)
+		if (e->fig[i].gen && e->fig[i].behave)
+			write_behave(&e->fig[i], f);
 	for (int i = 0; i < ENV_MAX_VIEWS; i++) {
 		const struct env_view *v = &e->view[i];
 		if (!v->used)
@@ -310,6 +334,75 @@ read_q(struct reader *r, struct env *e)
 	return 0;
 }
 
+/* a constraint definition from key=value words (from index from on) */
+static int
+read_def(struct reader *r, int from, const struct model *m, struct ik_constraint_def *dest)
+{
+	struct words *w = &r->w;
+	struct ik_constraint_def d = ik_constraint_default_def();
+	unsigned long group;
+	const char *eff = arg(w, from, "effector"), *gs = arg(w, from, "goalsite"),
+		   *st = arg(w, from, "start");
+	d.effector_site = eff ? model_find_site(m, eff) : -1;
+	d.goal_site = gs && strcmp(gs, "-") ? model_find_site(m, gs) : -1;
+	d.start_joint = st && strcmp(st, "-") ? model_find_joint(m, st) : -1;
+	int pos = lookup(pos_names, 4, arg(w, from, "pos")), ori = lookup(ori_names, 4, arg(w, from, "ori"));
+	const char *en = arg(w, from, "enabled"), *com = arg(w, from, "com");
+	if (d.effector_site < 0 || (gs && strcmp(gs, "-") && d.goal_site < 0) ||
+	    (st && strcmp(st, "-") && d.start_joint < 0) || pos < 0 || ori < 0 || !en || !com ||
+	    read_uint(arg(w, from, "group"), 3, &group) < 0 ||
+	    read_xform(arg(w, from, "effoff"), &d.effector_offset) < 0 ||
+	    read_xform(arg(w, from, "goal"), &d.goal_xf) < 0 ||
+	    words_list(arg(w, from, "axis"), UNIT_NONE, 3, d.goal_axis) < 0 ||
+	    words_list(arg(w, from, "effaxis"), UNIT_NONE, 3, d.effector_axis) < 0 ||
+	    words_number(arg(w, from, "posweight") ? arg(w, from, "posweight") : "", UNIT_NONE, &d.pos_weight) < 0 ||
+	    words_number(arg(w, from, "weight") ? arg(w, from, "weight") : "", UNIT_NONE, &d.weight) < 0)
+		return -1;
+	d.pos = (enum ik_pos)pos;
+	d.ori = (enum ik_ori)ori;
+	d.enabled = !strcmp(en, "1");
+	d.com_effector = !strcmp(com, "1");
+	d.group = (int)group;
+	*dest = d;
+	return 0;
+}
+
+/* "behave FIG V0,V1,..." and "bdef FIG K fields": a figure's behaviours */
+static int
+read_behave(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	int fig = w->n >= 3 ? find_fig(e, w->w[1]) : -1;
+	if (fig < 0)
+		return fail(r, "expected: %s FIGURE ... for a figure defined above", w->w[0]);
+	struct env_figure *f = &e->fig[fig];
+	if (!strcmp(w->w[0], "bdef")) {
+		unsigned long k;
+		if (!f->behave || read_uint(w->w[2], BEHAVE_NCON - 1, &k) < 0 ||
+		    read_def(r, 3, f->model, &f->behave->def[k]) < 0)
+			return fail(r, "bad behaviour constraint for %s", f->name);
+		f->behave->detached = 1;
+		f->ik_stale = 1;
+		return 0;
+	}
+	double v[256];
+	int n = 1;
+	for (const char *c = w->w[2]; *c; c++)
+		n += *c == ',';
+	struct behave *b = f->behave ? f->behave : calloc(1, sizeof *b);
+	if (!b || n > 256 || w->n != 3 || words_list(w->w[2], UNIT_NONE, n, v) < 0 ||
+	    behave_unpack(b, f->model, v, n) < 0) {
+		if (b != f->behave)
+			free(b);
+		return fail(r, "bad behaviour state for %s", f->name);
+	}
+	f->behave = b;
+	f->ik_stale = 1;
+	/* what the behaviours measure, measured again on the posture read above */
+	balance_measure(f->model, f->state, BALANCE_CONTACT, &b->bal);
+	return 0;
+}
+
 static int
 read_constraint(struct reader *r, struct env *e)
 {
@@ -323,26 +416,9 @@ read_constraint(struct reader *r, struct env *e)
 	    read_uint(arg(w, 2, "group"), 3, &group) < 0)
 		return fail(r, "expected: constraint NAME slot=N gen=G figure=FIG ... group=G");
 	const struct model *m = e->fig[fig].model;
-	struct ik_constraint_def d = ik_constraint_default_def();
-	const char *eff = arg(w, 2, "effector"), *gs = arg(w, 2, "goalsite"), *st = arg(w, 2, "start");
-	d.effector_site = eff ? model_find_site(m, eff) : -1;
-	d.goal_site = gs && strcmp(gs, "-") ? model_find_site(m, gs) : -1;
-	d.start_joint = st && strcmp(st, "-") ? model_find_joint(m, st) : -1;
-	int pos = lookup(pos_names, 4, arg(w, 2, "pos")), ori = lookup(ori_names, 4, arg(w, 2, "ori"));
-	const char *en = arg(w, 2, "enabled"), *com = arg(w, 2, "com");
-	if (d.effector_site < 0 || (gs && strcmp(gs, "-") && d.goal_site < 0) ||
-	    (st && strcmp(st, "-") && d.start_joint < 0) || pos < 0 || ori < 0 || !en || !com ||
-	    read_xform(arg(w, 2, "effoff"), &d.effector_offset) < 0 ||
-	    read_xform(arg(w, 2, "goal"), &d.goal_xf) < 0 ||
-	    words_list(arg(w, 2, "axis") ? arg(w, 2, "axis") : "", UNIT_NONE, 3, d.goal_axis) < 0 ||
-	    words_list(arg(w, 2, "effaxis") ? arg(w, 2, "effaxis") : "", UNIT_NONE, 3, d.effector_axis) < 0 ||
-	    words_number(arg(w, 2, "posweight") ? arg(w, 2, "posweight") : "", UNIT_NONE, &d.pos_weight) < 0 ||
-	    words_number(arg(w, 2, "weight") ? arg(w, 2, "weight") : "", UNIT_NONE, &d.weight) < 0)
+	struct ik_constraint_def d;
+	if (read_def(r, 2, m, &d) < 0)
 		return fail(r, "constraint %s: a field is missing or bad", w->w[1]);
-	d.pos = (enum ik_pos)pos;
-	d.ori = (enum ik_ori)ori;
-	d.enabled = !strcmp(en, "1");
-	d.com_effector = !strcmp(com, "1");
 	d.group = (int)group;
 	if (e->con[slot].gen)
 		return fail(r, "constraint slot %lu appears twice", slot);
@@ -421,6 +497,8 @@ session_read(const char *text, size_t len, const char *base_dir, const char *lib
 			ok = read_constraint(r, dest);
 		else if (!strcmp(kw, "view"))
 			ok = read_view(r, dest);
+		else if (!strcmp(kw, "behave") || !strcmp(kw, "bdef"))
+			ok = read_behave(r, dest);
 		else if (!strcmp(kw, "end"))
 			ok = 0, ended = 1;
 		else
@@ -548,6 +626,8 @@ void
 session_write_figure_posture(const struct env *e, int fig, FILE *f)
 {
 	write_figure_posture(&e->fig[fig], f);
+	if (e->fig[fig].behave)
+		write_behave(&e->fig[fig], f);
 }
 
 int
@@ -565,6 +645,8 @@ session_apply_line(struct env *e, const char *line, size_t len, char *err, size_
 			rc = read_root(r, e);
 		else if (!strcmp(r->w.w[0], "q"))
 			rc = read_q(r, e);
+		else if (!strcmp(r->w.w[0], "behave") || !strcmp(r->w.w[0], "bdef"))
+			rc = read_behave(r, e);
 		else
 			rc = fail(r, "not a posture statement");
 	} else if (rc == 0) {
