@@ -153,6 +153,24 @@ balance_measure(const struct model *m, const struct state *s, double contact_hei
 	return 0;
 }
 
+#define BALANCE_NOMINAL_EDGE 0.10 /* m: z's unit where the polygon gives none (feet in the air) */
+
+/*
+ * z's unit the way dir (sign of z) goes: how far the polygon reaches from
+ * the balance line at x, clamped to the line's ends so that points out past
+ * a foot's side keep finite parameters that map back to the same point.
+ */
+static double
+edge_at(const struct balance *b, double x, double z)
+{
+	double d[2] = { b->ref_r[0] - b->ref_l[0], b->ref_r[1] - b->ref_l[1] };
+	double xc = x < 0 ? 0 : x > 1 ? 1 : x;
+	double p[2] = { b->ref_l[0] + xc * d[0], b->ref_l[1] + xc * d[1] };
+	double dir[2] = { z >= 0 ? b->forward[0] : -b->forward[0], z >= 0 ? b->forward[1] : -b->forward[1] };
+	double edge = reach_along(b, p, dir);
+	return edge > 1e-6 ? edge : BALANCE_NOMINAL_EDGE;
+}
+
 void
 balance_params_of(const struct balance *b, const double pt[2], double *x, double *z)
 {
@@ -164,9 +182,7 @@ balance_params_of(const struct balance *b, const double pt[2], double *x, double
 	double p[2] = { b->ref_l[0] + *x * d[0], b->ref_l[1] + *x * d[1] };
 	double off[2] = { pt[0] - p[0], pt[1] - p[1] };
 	double zraw = dot2(off, b->forward);
-	double back[2] = { -b->forward[0], -b->forward[1] };
-	double edge = reach_along(b, p, zraw >= 0 ? b->forward : back);
-	*z = edge > 1e-9 ? zraw / edge : (zraw >= 0 ? 1e9 : -1e9);
+	*z = zraw / edge_at(b, *x, zraw);
 }
 
 void
@@ -174,8 +190,7 @@ balance_point_of(const struct balance *b, double x, double z, double dest[2])
 {
 	double d[2] = { b->ref_r[0] - b->ref_l[0], b->ref_r[1] - b->ref_l[1] };
 	double p[2] = { b->ref_l[0] + x * d[0], b->ref_l[1] + x * d[1] };
-	double back[2] = { -b->forward[0], -b->forward[1] };
-	double edge = reach_along(b, p, z >= 0 ? b->forward : back);
+	double edge = edge_at(b, x, z);
 	dest[0] = p[0] + z * edge * b->forward[0];
 	dest[1] = p[1] + z * edge * b->forward[1];
 }

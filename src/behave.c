@@ -32,6 +32,7 @@ behave_default_params(void)
 	p.step_when_twisted = 1;
 	p.twist_limit = 45 * M_PI / 180;
 	p.step_frames = 20;
+	p.stability_threshold = 0.02;
 	return p;
 }
 
@@ -395,20 +396,27 @@ static void
 step_trigger(struct behave *b, const struct model *m, struct state *s, struct ik *ik)
 {
 	const struct balance *bal = &b->bal;
-	if (b->root == BALANCE_ROOT_LOWER_TORSO || fabs(bal->z) <= 1 || bal->npoly < 3)
+	if (b->root == BALANCE_ROOT_LOWER_TORSO || bal->npoly < 3 || bal->margin >= 0)
+		return;
+	/* out past a foot's outer edge rather than the front or back */
+	int to_side = (bal->x < 0 || bal->x > 1) && fabs(bal->z) <= 1;
+	if (!to_side && fabs(bal->z) <= 1)
 		return;
 	/* going down into a squat is no loss of balance: the feet stay (§5.5.2) */
 	double standing = 0.75 * b->leg_length;
 	if (s->com[1] < standing || (b->p.hold_elevation && b->elevation < standing))
 		return;
-	int side = b->root == BALANCE_ROOT_LEFT_FOOT ? 1 : 0; /* the foot not rooted */
+	/* to the front or back the foot bearing less weight steps; to the side
+	 * only the support foot, the one the balance point went past, can */
+	int side = to_side ? (bal->x < 0 ? 0 : 1) : bal->weight_l > 0.5 ? 1 : 0;
 	const double *support = side ? bal->ref_l : bal->ref_r, *moving = side ? bal->ref_r : bal->ref_l;
 	double target[2] = { 2 * bal->point[0] - support[0], 2 * bal->point[1] - support[1] };
 	struct xform to = s->site_xf[b->s_toe[side]];
 	to.p[0] += target[0] - moving[0];
 	to.p[2] += target[1] - moving[1];
+	/* the figure stands on the other foot while this one is in the air */
+	set_root(b, m, s, ik, side ? BALANCE_ROOT_LEFT_FOOT : BALANCE_ROOT_RIGHT_FOOT);
 	step_start(b, s, ik, side, &to);
-	(void)m;
 }
 
 static void
@@ -492,10 +500,37 @@ behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik
 		kin_update(m, s);
 	}
 	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
+	/* stability as data: the alert's edge, for the loop to tell */
+	int low = b->bal.margin < b->p.stability_threshold;
+	b->stability_changed = low != b->stability_low;
+	b->stability_low = low;
 	return r;
 }
 
 /* ---- manipulation primitives ---------------------------------------------------- */
+
+/*
+ * Foot orientation follows balance line (§D.2.2): the foot keeps its angle
+ * to the line from the other foot, so a foot stepping forward turns toward
+ * the stationary one as a person turning that way would. The turn is about
+ * the toes, added to whatever turn the goal already carries.
+ */
+static void
+follow_balance_line(struct behave *b, const struct model *m, struct state *s, int side,
+		    struct xform *g)
+{
+	if (balance_measure(m, s, BALANCE_CONTACT, &b->bal) < 0)
+		return;
+	const double *fixed = side ? b->bal.ref_l : b->bal.ref_r, *moving = side ? b->bal.ref_r : b->bal.ref_l;
+	const double *toe = s->site_xf[b->s_toe[side]].p;
+	double now[2] = { moving[0] - fixed[0], moving[1] - fixed[1] };
+	double then[2] = { now[0] + g->p[0] - toe[0], now[1] + g->p[2] - toe[2] };
+	if (hypot(then[0], then[1]) < 1e-6 || hypot(now[0], now[1]) < 1e-6)
+		return;
+	double turn[9];
+	rot_y(atan2(then[0], then[1]) - atan2(now[0], now[1]), turn);
+	mat_mul3(turn, g->r, g->r);
+}
 
 void
 behave_move_foot(struct behave *b, const struct model *m, struct state *s, struct ik *ik, int side,
@@ -505,9 +540,12 @@ behave_move_foot(struct behave *b, const struct model *m, struct state *s, struc
 	enum balance_root other = side ? BALANCE_ROOT_LEFT_FOOT : BALANCE_ROOT_RIGHT_FOOT;
 	if (b->root != BALANCE_ROOT_LOWER_TORSO)
 		set_root(b, m, s, ik, other);
-	ik_set_goal(ik, b->c_toe[side], goal);
+	struct xform g = *goal;
+	if (b->p.foot_follows_line)
+		follow_balance_line(b, m, s, side, &g);
+	ik_set_goal(ik, b->c_toe[side], &g);
 	struct ik_constraint_def d = *ik_get(ik, b->c_heel[side]);
-	d.goal_xf.p[0] = goal->p[0], d.goal_xf.p[2] = goal->p[2];
+	d.goal_xf.p[0] = g.p[0], d.goal_xf.p[2] = g.p[2];
 	ik_set_goal(ik, b->c_heel[side], &d.goal_xf);
 }
 
@@ -677,6 +715,8 @@ behave_pack(const struct behave *b, double *dest, int max)
 	PACK_PUT(p->step_when_twisted);
 	PACK_PUT(p->twist_limit);
 	PACK_PUT(p->step_frames);
+	PACK_PUT(p->foot_follows_line);
+	PACK_PUT(p->stability_threshold);
 	PACK_PUT(b->leg_length);
 	PACK_PUT(b->bal_x);
 	PACK_PUT(b->bal_z);
@@ -738,6 +778,8 @@ behave_unpack(struct behave *b, const struct model *m, const double *v, int nv)
 	p->step_when_twisted = (int)PACK_GET();
 	p->twist_limit = PACK_GET();
 	p->step_frames = (int)PACK_GET();
+	p->foot_follows_line = (int)PACK_GET();
+	p->stability_threshold = PACK_GET();
 	fresh.leg_length = PACK_GET();
 	fresh.bal_x = PACK_GET();
 	fresh.bal_z = PACK_GET();

@@ -54,6 +54,7 @@ enum hand_behavior {
 struct behave_params {
 	enum foot_behavior foot[2];
 	enum heel_behavior heel[2];
+	int foot_follows_line;    /* a moved foot keeps its angle to the balance line (§D.2.2) */
 	int hold_elevation;       /* the centre of mass keeps its height (§D.1.2) */
 	enum torso_behavior torso;
 	int fixate_head, fixate_eyes;
@@ -71,6 +72,7 @@ struct behave_params {
 	int step_when_twisted;    /* the pelvis turned past twist_limit from the feet (§D.3.2) */
 	double twist_limit;       /* radians, 45 degrees by default */
 	int step_frames;          /* a step's duration */
+	double stability_threshold; /* m: a margin below it is "low" (the stability alert) */
 };
 
 struct behave_params behave_default_params(void);
@@ -105,6 +107,8 @@ struct behave {
 	struct balance bal;       /* measured this frame */
 	struct behave_step step;
 	int steps_taken;
+	int stability_low;     /* the margin is below the threshold */
+	int stability_changed; /* ... and was not at the frame before */
 	int detached; /* def[] holds the constraints; they are not (yet) in the solver */
 };
 

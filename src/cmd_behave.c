@@ -1,4 +1,5 @@
 /* cmd_behave.c - behaviours through the protocol: switching, parameters, primitives */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -130,7 +131,7 @@ choice(struct cmd_ctx *c, const char *key, const char *a, const char *b, int va,
 static const char *const behavior_keys[] = {
 	"foot", "foot_l", "foot_r", "heel", "heel_l", "heel_r", "elevation", "torso", "head", "eyes",
 	"hands", "hand_l", "hand_r", "follow_feet", "pelvis_follows", "auto_root", "com_root",
-	"step", "twist_step"
+	"step", "twist_step", "foot_orient", "stability"
 };
 
 int
@@ -167,6 +168,12 @@ cmd_set_behavior(struct cmd_ctx *c)
 		p.heel[k] = (enum heel_behavior)hk;
 	}
 	p.hold_elevation = elev;
+	if (choice(c, "foot_orient", "global", "line", 0, 1, &p.foot_follows_line) < 0)
+		return -1;
+	const char *th = cmd_key(c, "stability");
+	if (th && (words_number(th, UNIT_LENGTH, &p.stability_threshold) < 0 ||
+		   !(fabs(p.stability_threshold) <= 1)))
+		return cmd_fail(c, "bad-number", "stability=LENGTH: the margin (-1 m..1 m) that raises the alert");
 	const char *t = cmd_key(c, "torso");
 	if (t) {
 		torso = !strcmp(t, "vertical") ? TORSO_KEEP_VERTICAL : !strcmp(t, "global") ? TORSO_HOLD_GLOBAL
@@ -223,11 +230,14 @@ cmd_get_behavior(struct cmd_ctx *c)
 	json_object_set_new(p, "com_root", json_boolean(b->p.root_through_com));
 	json_object_set_new(p, "step", json_boolean(b->p.step_when_losing_balance));
 	json_object_set_new(p, "twist_step", json_boolean(b->p.step_when_twisted));
+	json_object_set_new(p, "foot_orient", json_string(b->p.foot_follows_line ? "line" : "global"));
+	json_object_set_new(p, "stability", json_real(b->p.stability_threshold));
 	json_object_set_new(bal, "x", json_real(b->bal.x));
 	json_object_set_new(bal, "z", json_real(b->bal.z));
 	json_object_set_new(bal, "margin", json_real(b->bal.margin));
 	json_object_set_new(bal, "point", cmd_vec(b->bal.point, 2));
 	json_object_set_new(bal, "held", cmd_vec(b->bal_point, 2));
+	json_object_set_new(bal, "low", json_boolean(b->stability_low));
 	json_object_set_new(c->result, "parameters", p);
 	json_object_set_new(c->result, "root", json_string(roots[b->root]));
 	json_object_set_new(c->result, "balance", bal);

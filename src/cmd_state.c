@@ -212,13 +212,14 @@ sub_kinds(struct cmd_ctx *c, unsigned *kinds)
 		const char *name;
 		unsigned kind;
 	} names[] = { { "posture", SUB_POSTURE }, { "telemetry", SUB_TELEMETRY },
-		      { "message", SUB_MESSAGE }, { "frame", SUB_FRAME } };
+		      { "message", SUB_MESSAGE }, { "frame", SUB_FRAME },
+		      { "stability", SUB_STABILITY }, { "alert", SUB_ALERT } };
 	for (size_t i = 0; i < sizeof names / sizeof *names; i++)
 		if (!strcmp(c->argv[0], names[i].name)) {
 			*kinds = names[i].kind;
 			return 0;
 		}
-	return cmd_fail(c, "bad-argument", "events are posture, telemetry, message or frame");
+	return cmd_fail(c, "bad-argument", "events are posture, telemetry, message, frame, stability or alert");
 }
 
 static int

@@ -39,6 +39,8 @@ enum sub_kind {
 	SUB_TELEMETRY = 1 << 1,
 	SUB_MESSAGE = 1 << 2,
 	SUB_FRAME = 1 << 3,
+	SUB_STABILITY = 1 << 4, /* every frame: support polygon, balance point, margin */
+	SUB_ALERT = 1 << 5,     /* the stability margin crossing its threshold */
 };
 
 struct daemon {

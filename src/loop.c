@@ -226,6 +226,74 @@ telemetry_event(struct loop *L, int fig, const struct ik_result *r, uint64_t bud
 	send_event(L, SUB_TELEMETRY);
 }
 
+/* the balance of a behaving figure as it stands after its frame */
+static void
+balance_fields(struct jbuf *j, const struct behave *b)
+{
+	jbuf_key(j, "margin", 0);
+	jbuf_num(j, b->bal.margin);
+	jbuf_key(j, "threshold", 0);
+	jbuf_num(j, b->p.stability_threshold);
+	jbuf_key(j, "com", 0);
+	jbuf_vec(j, b->bal.point, 2);
+}
+
+/*
+ * Stability as data: every frame the support polygon, the balance point
+ * the behaviours hold, the centre of mass on the floor, its parameters and
+ * the margin; and an alert when the margin crosses the figure's threshold.
+ */
+static void
+stability_events(struct loop *L, int fig)
+{
+	const struct env_figure *f = &L->d.env.fig[fig];
+	const struct behave *b = f->behave;
+	struct jbuf *j = &L->ev;
+	if (b->stability_changed && has_subscribers(L, SUB_ALERT)) {
+		jbuf_reset(j);
+		jbuf_raw(j, "{\"event\":\"alert\"");
+		jbuf_key(j, "frame", 0);
+		jbuf_int(j, (long long)L->d.stats.frame);
+		jbuf_key(j, "figure", 0);
+		jbuf_str(j, f->name);
+		jbuf_key(j, "stability", 0);
+		jbuf_str(j, b->stability_low ? "low" : "ok");
+		balance_fields(j, b);
+		jbuf_raw(j, "}");
+		send_event(L, SUB_ALERT);
+	}
+	if (!has_subscribers(L, SUB_STABILITY))
+		return;
+	jbuf_reset(j);
+	jbuf_raw(j, "{\"event\":\"stability\"");
+	jbuf_key(j, "frame", 0);
+	jbuf_int(j, (long long)L->d.stats.frame);
+	jbuf_key(j, "figure", 0);
+	jbuf_str(j, f->name);
+	balance_fields(j, b);
+	jbuf_key(j, "low", 0);
+	jbuf_bool(j, b->stability_low);
+	jbuf_key(j, "balance_point", 0);
+	jbuf_vec(j, b->bal_point, 2);
+	jbuf_key(j, "x", 0);
+	jbuf_num(j, b->bal.x);
+	jbuf_key(j, "z", 0);
+	jbuf_num(j, b->bal.z);
+	jbuf_key(j, "weight_left", 0);
+	jbuf_num(j, b->bal.weight_l);
+	jbuf_key(j, "stepping", 0);
+	jbuf_bool(j, b->step.active);
+	jbuf_key(j, "polygon", 0);
+	jbuf_raw(j, "[");
+	for (int k = 0; k < b->bal.npoly; k++) {
+		if (k)
+			jbuf_raw(j, ",");
+		jbuf_vec(j, b->bal.poly[k], 2);
+	}
+	jbuf_raw(j, "]}");
+	send_event(L, SUB_STABILITY);
+}
+
 /* ---- frames ------------------------------------------------------------------ */
 
 static int
@@ -271,6 +339,8 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 		L->d.stats.step_cut |= r.stepped;
 		*changed |= state_hash(f->model, f->state) != before;
 		telemetry_event(L, i, &r, opt.budget_us, us);
+		if (f->behave)
+			stability_events(L, i);
 	}
 	L->d.stats.frame++;
 	return 0;

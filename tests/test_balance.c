@@ -65,6 +65,22 @@ test_parameters_and_their_inverse(void **unused)
 	assert_near(balance_margin(&b, out), -0.10, 1e-12);
 }
 
+/* out past a foot's side: x beyond 0..1, z finite, normalised as at that foot's end */
+static void
+test_parameters_past_a_foot(void **unused)
+{
+	(void)unused;
+	struct balance b;
+	two_feet(&b);
+	double out[2] = { 0.30, 0.11 }, x, z, p[2];
+	balance_params_of(&b, out, &x, &z);
+	assert_near(x, -1.0, 1e-12);   /* a whole line's length past the left foot */
+	assert_near(z, 0.5, 1e-12);    /* half the left foot's reach to the front (0.04 -> 0.18) */
+	balance_point_of(&b, x, z, p); /* and back */
+	assert_near(p[0], out[0], 1e-12);
+	assert_near(p[1], out[1], 1e-12);
+}
+
 static struct model *
 human(void)
 {
@@ -170,6 +186,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_hull_of_two_feet_is_their_outer_rectangle),
 		cmocka_unit_test(test_parameters_and_their_inverse),
+		cmocka_unit_test(test_parameters_past_a_foot),
 		cmocka_unit_test(test_standing_human_is_balanced_between_its_feet),
 		cmocka_unit_test(test_leaning_moves_the_parameters_the_right_way),
 		cmocka_unit_test(test_rooting_rules),

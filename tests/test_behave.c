@@ -208,6 +208,127 @@ test_fig_5_6_step_when_losing_balance(void **unused)
 	rig_free(&r);
 }
 
+/* §D.3.1: past a foot's outer edge only the support foot can step, out to the side */
+static void
+test_step_to_the_side(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	double left0[3], right0[3];
+	memcpy(left0, r.s->site_xf[r.b.s_toe[0]].p, sizeof left0);
+	memcpy(right0, r.s->site_xf[r.b.s_toe[1]].p, sizeof right0);
+	behave_move_com(&r.b, r.m, r.s, r.ik, 0.20, 0, 0); /* 20 cm to the left: past the left foot */
+	frames(&r, 80);
+	double moved = r.s->site_xf[r.b.s_toe[0]].p[0] - left0[0];
+	printf("steps %d, left foot out %.1f cm, margin %.3f m, x %.2f\n", r.b.steps_taken,
+	       100 * moved, r.b.bal.margin, r.b.bal.x);
+	assert_true(r.b.steps_taken >= 1);
+	assert_false(r.b.step.active);
+	assert_true(moved > 0.15); /* the left (support) foot stepped out to the left */
+	for (int i = 0; i < 3; i++) /* the right foot stayed where it was */
+		assert_near(r.s->site_xf[r.b.s_toe[1]].p[i], right0[i], 2e-3);
+	assert_true(r.b.bal.margin > 0);
+	/* the balance point ends midway between the feet, as the step aimed */
+	assert_true(r.b.bal.x > 0.3 && r.b.bal.x < 0.7);
+	snapshot(&r, "step-to-the-side", FRONT);
+	rig_free(&r);
+}
+
+/* the heading of a foot about the vertical, heel to toe tip */
+static double
+heading(const struct rig *r, int side)
+{
+	const double *h = r->s->site_xf[r->b.s_heel[side]].p, *t = r->s->site_xf[r->b.s_tip[side]].p;
+	return atan2(t[0] - h[0], t[2] - h[2]);
+}
+
+/* §D.2.2: a foot moved forward turns with the balance line, toward the stationary foot */
+static void
+foot_forward(int follow, double *turned, double *line_turned)
+{
+	struct behave_params p = behave_default_params();
+	p.foot_follows_line = follow;
+	struct rig r;
+	rig_make(&r, &p);
+	frames(&r, 3);
+	double h0 = heading(&r, 0);
+	/* the balance line from the right foot to the left, before and (the foot moved) after */
+	double w[2] = { r.b.bal.ref_l[0] - r.b.bal.ref_r[0], r.b.bal.ref_l[1] - r.b.bal.ref_r[1] };
+	const double d = 0.10;
+	struct xform goal = r.s->site_xf[r.b.s_toe[0]];
+	goal.p[2] += d;
+	behave_move_foot(&r.b, r.m, r.s, r.ik, BEHAVE_LEFT, &goal);
+	frames(&r, 40);
+	*turned = atan2(sin(heading(&r, 0) - h0), cos(heading(&r, 0) - h0));
+	*line_turned = atan2(w[0], w[1] + d) - atan2(w[0], w[1]);
+	for (int i = 0; i < 3; i += 2) /* the toes got there */
+		assert_near(r.s->site_xf[r.b.s_toe[0]].p[i], goal.p[i], 3e-3);
+	if (follow)
+		snapshot(&r, "foot-follows-balance-line", FRONT);
+	rig_free(&r);
+}
+
+static void
+test_foot_orientation_follows_balance_line(void **unused)
+{
+	(void)unused;
+	double turned, line;
+	foot_forward(1, &turned, &line);
+	printf("follows: foot turned %.1f deg, the line %.1f deg\n", turned / DEG, line / DEG);
+	assert_true(line < -10 * DEG); /* the line does turn, toward the right foot */
+	assert_near(turned, line, 1.5 * DEG);
+	foot_forward(0, &turned, &line);
+	printf("global: foot turned %.1f deg\n", turned / DEG);
+	assert_near(turned, 0, 1 * DEG);
+}
+
+/* stability as data: the alert rises once when the margin drops below the threshold */
+static void
+test_stability_alert_edges(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	assert_false(r.b.stability_low); /* standing square: far inside */
+	assert_false(r.b.stability_changed);
+	double m0 = r.b.bal.margin;
+	assert_true(m0 > r.b.p.stability_threshold);
+	struct behave_params p = r.b.p;
+	p.step_when_losing_balance = 0;
+	behave_set_params(&r.b, r.m, r.s, r.ik, &p);
+	/* lean forward to 95 % of the way to the front edge (Figure 5.2's z): low, said once */
+	double front[2];
+	balance_point_of(&r.b.bal, r.b.bal.x, 0.95, front);
+	double lean[2] = { front[0] - r.b.bal.point[0], front[1] - r.b.bal.point[1] };
+	behave_move_com(&r.b, r.m, r.s, r.ik, lean[0], lean[1], 0);
+	int rises = 0, falls = 0;
+	for (int i = 0; i < 30; i++) {
+		frames(&r, 1);
+		rises += r.b.stability_changed && r.b.stability_low;
+		falls += r.b.stability_changed && !r.b.stability_low;
+	}
+	printf("margin %.4f -> %.4f m\n", m0, r.b.bal.margin);
+	assert_near(r.b.bal.z, 0.95, 0.01);
+	assert_true(r.b.bal.margin > 0 && r.b.bal.margin < r.b.p.stability_threshold);
+	assert_int_equal(rises, 1);
+	assert_int_equal(falls, 0);
+	assert_true(r.b.stability_low);
+	/* and back: ok, said once */
+	behave_move_com(&r.b, r.m, r.s, r.ik, -lean[0] / 2, -lean[1] / 2, 0);
+	for (int i = 0; i < 30; i++) {
+		frames(&r, 1);
+		rises += r.b.stability_changed && r.b.stability_low;
+		falls += r.b.stability_changed && !r.b.stability_low;
+	}
+	assert_int_equal(rises, 1);
+	assert_int_equal(falls, 1);
+	assert_false(r.b.stability_low);
+	rig_free(&r);
+}
+
 /* Figure 5.7: bending forward 45 degrees shifts the hips back, balanced, feet planted */
 static void
 test_fig_5_7_bend_torso_keeps_balance(void **unused)
@@ -370,6 +491,9 @@ main(void)
 		cmocka_unit_test(test_fig_5_4_shift_com_feet_held),
 		cmocka_unit_test(test_fig_5_5_squat_reroots_at_the_lower_torso),
 		cmocka_unit_test(test_fig_5_6_step_when_losing_balance),
+		cmocka_unit_test(test_step_to_the_side),
+		cmocka_unit_test(test_foot_orientation_follows_balance_line),
+		cmocka_unit_test(test_stability_alert_edges),
 		cmocka_unit_test(test_fig_5_7_bend_torso_keeps_balance),
 		cmocka_unit_test(test_hands_on_hips_survive_a_bend),
 		cmocka_unit_test(test_fig_5_8_rotate_pelvis_keeps_chest_vertical),

@@ -67,3 +67,79 @@ def test_behaviour_state_survives_kill_9_exactly():
     finally:
         d.stop()
         d.cleanup()
+
+
+def signed_distance(poly, p):
+    """Signed distance from p to a convex polygon's boundary (> 0 inside): the reference
+    the daemon's stability margin is checked against."""
+    best, inside = float("inf"), True
+    for i, a in enumerate(poly):
+        c = poly[(i + 1) % len(poly)]
+        e = (c[0] - a[0], c[1] - a[1])
+        w = (p[0] - a[0], p[1] - a[1])
+        t = max(0.0, min(1.0, (w[0] * e[0] + w[1] * e[1]) / (e[0] ** 2 + e[1] ** 2)))
+        q = (a[0] + t * e[0] - p[0], a[1] + t * e[1] - p[1])
+        best = min(best, (q[0] ** 2 + q[1] ** 2) ** 0.5)
+        if e[0] * w[1] - e[1] * w[0] < 0:
+            inside = False
+    return best if inside else -best
+
+
+def test_stability_events_publish_the_polygon_and_alert_on_the_threshold(daemon):
+    """Stability as data: every frame the support polygon, the balance point, the centre
+    of mass on the floor and the margin (checked against an independent signed distance);
+    one alert when the margin drops below the figure's threshold, one when it recovers."""
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request("behave jack on")
+        c.request("set behavior jack step=off stability=3cm")
+        assert c.request("get behavior jack")["parameters"]["stability"] == 0.03
+        c.subscribe("stability")
+        c.subscribe("alert")
+        settled(c)
+        ev = [e for e in c.pending_events() if e["event"] == "stability"]
+        assert ev, "no stability events"
+        last = ev[-1]
+        assert last["figure"] == "jack" and len(last["polygon"]) >= 3
+        assert abs(signed_distance(last["polygon"], last["com"]) - last["margin"]) < 1e-6
+        assert last["margin"] > 0.03 and not last["low"]
+        # lean forward until 1 cm from the polygon's front edge, found independently
+        poly, com = last["polygon"], last["com"]
+        dz = 0.0
+        while signed_distance(poly, (com[0], com[1] + dz + 0.001)) > 0.01:
+            dz += 0.001
+        c.request(f"move com jack 0 {dz}")
+        settled(c)
+        events = c.pending_events()
+        alerts = [e for e in events if e["event"] == "alert"]
+        assert [a["stability"] for a in alerts] == ["low"], alerts
+        assert alerts[0]["margin"] < 0.03
+        last = [e for e in events if e["event"] == "stability"][-1]
+        assert last["low"] and 0 < last["margin"] < 0.03
+        assert abs(signed_distance(last["polygon"], last["com"]) - last["margin"]) < 1e-6
+        c.request(f"move com jack 0 {-dz}")
+        settled(c)
+        alerts = [e for e in c.pending_events() if e["event"] == "alert"]
+        assert [a["stability"] for a in alerts] == ["ok"], alerts
+        c.unsubscribe("stability")
+        c.unsubscribe("alert")
+        c.request("settle frames=5")
+        assert not [e for e in c.pending_events() if e["event"] in ("stability", "alert")]
+
+
+def test_past_a_foot_the_support_foot_steps_out_sideways(daemon):
+    """§D.3.1: with the balance point pushed out past the left foot, the left (support)
+    foot steps out to the side; the right foot stays; the balance ends inside."""
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request("behave jack on")
+        settled(c)
+        feet = [c.request(f"get site jack toes_{s}.toe")["position"] for s in "lr"]
+        c.request("move com jack 0.20 0")
+        settled(c)
+        after = [c.request(f"get site jack toes_{s}.toe")["position"] for s in "lr"]
+        b = c.request("get behavior jack")
+        assert b["steps"] >= 1 and not b["stepping"]
+        assert after[0][0] - feet[0][0] > 0.15
+        assert max(abs(x - y) for x, y in zip(after[1], feet[1])) < 2e-3
+        assert b["balance"]["margin"] > 0
