@@ -543,9 +543,15 @@ behave_move_foot(struct behave *b, const struct model *m, struct state *s, struc
 	struct xform g = *goal;
 	if (b->p.foot_follows_line)
 		follow_balance_line(b, m, s, side, &g);
-	ik_set_goal(ik, b->c_toe[side], &g);
+	behave_set_foot_goal(b, ik, side, &g);
+}
+
+void
+behave_set_foot_goal(struct behave *b, struct ik *ik, int side, const struct xform *goal)
+{
+	ik_set_goal(ik, b->c_toe[side], goal);
 	struct ik_constraint_def d = *ik_get(ik, b->c_heel[side]);
-	d.goal_xf.p[0] = g.p[0], d.goal_xf.p[2] = g.p[2];
+	d.goal_xf.p[0] = goal->p[0], d.goal_xf.p[2] = goal->p[2];
 	ik_set_goal(ik, b->c_heel[side], &d.goal_xf);
 }
 

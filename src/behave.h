@@ -159,6 +159,8 @@ void behave_set_params(struct behave *b, const struct model *m, struct state *s,
 /* the foot's toes to a frame on the floor; the support moves to the other foot */
 void behave_move_foot(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
 		      int side, const struct xform *goal);
+/* the foot's toes (and its heel's place on the floor) to goal; the support stays as it is */
+void behave_set_foot_goal(struct behave *b, struct ik *ik, int side, const struct xform *goal);
 /* the balance point by (dx, dz) on the floor and the centre of mass up by dy (0: free) */
 void behave_move_com(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
 		     double dx, double dz, double dy);

@@ -62,6 +62,8 @@ const char *cmd_key(struct cmd_ctx *c, const char *key);  /* "key=value" among t
 /* path inside the state directory: 0 with the full path in dest, or -1 with the error set */
 int cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len);
 json_t *cmd_vec(const double *v, int n);
+/* a figure's hands and feet held to other figures, as a list (cmd_attach.c) */
+json_t *cmd_attachments(const struct env *e, int fig);
 /* "rot=AXIS,ANGLE" (AXIS x, y, z or X,Y,Z) or "yaw=ANGLE" among the args; *given 0 when neither */
 int cmd_rotation(struct cmd_ctx *c, double r[9], int *given);
 

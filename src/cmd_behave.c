@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "attach.h"
 #include "cmd.h"
 #include "kin.h"
 
@@ -40,6 +41,7 @@ cmd_behave(struct cmd_ctx *c)
 	if (!on && strcmp(c->argv[1], "off"))
 		return cmd_fail(c, "bad-argument", "behave FIG on|off");
 	if (!on) {
+		attach_release_all(&c->d->env, fig);
 		free(f->behave);
 		f->behave = NULL;
 		f->ik_stale = 1;
@@ -243,6 +245,7 @@ cmd_get_behavior(struct cmd_ctx *c)
 	json_object_set_new(c->result, "balance", bal);
 	json_object_set_new(c->result, "steps", json_integer(b->steps_taken));
 	json_object_set_new(c->result, "stepping", json_boolean(b->step.active));
+	json_object_set_new(c->result, "attachments", cmd_attachments(&c->d->env, fig));
 	return 0;
 }
 
@@ -256,6 +259,16 @@ primitive(struct cmd_ctx *c, struct env_figure **f)
 	env_sync_solver(&c->d->env, fig);
 	*f = &c->d->env.fig[fig];
 	return (*f)->behave;
+}
+
+/* a hand or foot moved by hand stops following the object it held a place on */
+static void
+drop_local_hold(struct cmd_ctx *c, const struct env_figure *f, enum attach_limb limb, int side)
+{
+	struct env *e = &c->d->env;
+	int fig = (int)(f - e->fig), i = attach_find(e, fig, limb, side);
+	if (i >= 0 && e->att[i].kind == ATTACH_LOCAL)
+		attach_release(e, fig, limb, side);
 }
 
 int
@@ -283,6 +296,7 @@ cmd_move_foot(struct cmd_ctx *c)
 				t[3 * i + j] = r[3 * i] * g.r[j] + r[3 * i + 1] * g.r[3 + j] + r[3 * i + 2] * g.r[6 + j];
 		memcpy(g.r, t, sizeof t);
 	}
+	drop_local_hold(c, f, ATTACH_FOOT, side);
 	behave_move_foot(b, f->model, f->state, f->ik, side, &g);
 	return 0;
 }
@@ -364,6 +378,7 @@ cmd_move_hand(struct cmd_ctx *c)
 	memcpy(g.p, p, sizeof p);
 	if (turned)
 		memcpy(g.r, r, sizeof r);
+	drop_local_hold(c, f, ATTACH_HAND, side);
 	behave_move_hand(b, f->model, f->state, f->ik, side, &g, from && !strcmp(from, "wrist"));
 	return 0;
 }

@@ -30,6 +30,7 @@ env_clear(struct env *e)
 			free_figure(&e->fig[i]);
 	memset(e->con, 0, sizeof e->con);
 	memset(e->view, 0, sizeof e->view);
+	memset(e->att, 0, sizeof e->att);
 }
 
 static int
@@ -96,6 +97,9 @@ env_remove_figure(struct env *e, int slot)
 	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++)
 		if (e->con[i].gen && e->con[i].fig == slot)
 			memset(&e->con[i], 0, sizeof e->con[i]);
+	for (int i = 0; i < ENV_MAX_ATTACH; i++) /* what held it or it held lets go */
+		if (e->att[i].used && (e->att[i].fig == slot || e->att[i].obj == slot))
+			memset(&e->att[i], 0, sizeof e->att[i]);
 	free_figure(&e->fig[slot]);
 }
 

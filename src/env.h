@@ -52,6 +52,27 @@ struct env_constraint {
 	struct ik_constraint_def def;
 };
 
+/*
+ * A limb of a behaving human held to another figure (Table D.4, §D.1.1):
+ * ATTACH_GRAB, the hand grabbed the object, which follows the hand (rel:
+ * the object's base segment in the palm's frame); ATTACH_LOCAL, the hand
+ * or foot holds a location local to the object's segment and follows it
+ * (rel: the palm or toes in that segment's frame). See attach.h.
+ */
+enum attach_kind { ATTACH_GRAB, ATTACH_LOCAL };
+enum attach_limb { ATTACH_HAND, ATTACH_FOOT };
+
+struct env_attach {
+	int used;
+	enum attach_kind kind;
+	enum attach_limb limb;
+	int fig, side;  /* the human and its limb */
+	int obj, seg;   /* the object figure and its segment */
+	struct xform rel;
+};
+
+#define ENV_MAX_ATTACH (4 * ENV_MAX_FIGURES)
+
 /* a named view (§1.7: several graphics windows), its camera aimed at a point */
 struct env_view {
 	int used;
@@ -65,6 +86,7 @@ struct env {
 	struct env_figure fig[ENV_MAX_FIGURES];
 	struct env_constraint con[ENV_MAX_CONSTRAINTS];
 	struct env_view view[ENV_MAX_VIEWS];
+	struct env_attach att[ENV_MAX_ATTACH];
 	uint32_t next_gen;
 };
 

@@ -11,6 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "attach.h"
 #include "cmd.h"
 #include "jbuf.h"
 #include "kin.h"
@@ -328,6 +329,8 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 		uint64_t before = state_hash(f->model, f->state);
 		struct ik_options opt = ik_default_options();
 		opt.budget_us = budget_us / (uint64_t)busy; /* an equal share each */
+		if (f->behave) /* hands and feet holding on to objects go where the objects are */
+			attach_before_solve(e, i);
 		uint64_t t0 = real_now(NULL);
 		struct ik_result r = f->behave ? behave_frame(f->behave, f->model, f->state, f->ik, &opt,
 							      clock)
@@ -338,6 +341,8 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 		L->d.stats.time_cut |= r.status == IK_TIME_LIMIT;
 		L->d.stats.step_cut |= r.stepped;
 		*changed |= state_hash(f->model, f->state) != before;
+		if (f->behave) /* objects its hands grabbed follow them */
+			*changed |= attach_after_solve(e, i);
 		telemetry_event(L, i, &r, opt.budget_us, us);
 		if (f->behave)
 			stability_events(L, i);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "attach.h"
 #include "figure.h"
 #include "kin.h"
 #include "words.h"
@@ -111,6 +112,17 @@ session_write(const struct env *e, FILE *f)
 	for (int i = 0; i < ENV_MAX_FIGURES; i++)
 		if (e->fig[i].gen && e->fig[i].behave)
 			write_behave(&e->fig[i], f);
+	for (int i = 0; i < ENV_MAX_ATTACH; i++) {
+		const struct env_attach *a = &e->att[i];
+		if (!a->used)
+			continue;
+		fprintf(f, "attach %s limb=%s side=%s kind=%s object=%s segment=%s rel=",
+			e->fig[a->fig].name, a->limb == ATTACH_HAND ? "hand" : "foot",
+			a->side ? "right" : "left", a->kind == ATTACH_GRAB ? "grab" : "local",
+			e->fig[a->obj].name, e->fig[a->obj].model->seg_name[a->seg]);
+		write_xform(f, &a->rel);
+		fprintf(f, "\n");
+	}
 	for (int i = 0; i < ENV_MAX_VIEWS; i++) {
 		const struct env_view *v = &e->view[i];
 		if (!v->used)
@@ -434,6 +446,31 @@ read_constraint(struct reader *r, struct env *e)
 	return 0;
 }
 
+/* "attach FIG limb= side= kind= object= segment= rel=": a hand or foot held to a figure */
+static int
+read_attach(struct reader *r, struct env *e)
+{
+	static const char *const limbs[] = { "hand", "foot" }, *const sides[] = { "left", "right" },
+				  *const kinds[] = { "grab", "local" };
+	struct words *w = &r->w;
+	struct env_attach a = { .used = 1 };
+	const char *obj = arg(w, 2, "object"), *seg = arg(w, 2, "segment");
+	a.fig = w->n == 8 ? find_fig(e, w->w[1]) : -1;
+	a.obj = obj ? find_fig(e, obj) : -1;
+	a.limb = (enum attach_limb)lookup(limbs, 2, arg(w, 2, "limb"));
+	a.side = lookup(sides, 2, arg(w, 2, "side"));
+	a.kind = (enum attach_kind)lookup(kinds, 2, arg(w, 2, "kind"));
+	a.seg = a.obj >= 0 && seg ? model_find_segment(e->fig[a.obj].model, seg) : -1;
+	if (a.fig < 0 || a.obj < 0 || (int)a.limb < 0 || a.side < 0 || (int)a.kind < 0 || a.seg < 0 ||
+	    read_xform(arg(w, 2, "rel"), &a.rel) < 0)
+		return fail(r, "expected: attach FIG limb=hand|foot side=left|right kind=grab|local "
+			       "object=FIG segment=SEG rel=12 numbers, for figures defined above");
+	if (attach_add(e, &a) < 0)
+		return fail(r, "attachment of %s to %s is not possible (behaviours off? twice?)",
+			    w->w[1], obj);
+	return 0;
+}
+
 static int
 read_view(struct reader *r, struct env *e)
 {
@@ -499,6 +536,8 @@ session_read(const char *text, size_t len, const char *base_dir, const char *lib
 			ok = read_view(r, dest);
 		else if (!strcmp(kw, "behave") || !strcmp(kw, "bdef"))
 			ok = read_behave(r, dest);
+		else if (!strcmp(kw, "attach"))
+			ok = read_attach(r, dest);
 		else if (!strcmp(kw, "end"))
 			ok = 0, ended = 1;
 		else

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "attach.h"
 #include "kin.h"
 #include "session.h"
 #include "words.h"
@@ -116,6 +117,57 @@ test_session_round_trip_is_exact(void **unused)
 	env_clear(&b);
 }
 
+/* a behaving human whose hand grabbed another figure: the attachment round-trips */
+static void
+test_attachments_round_trip_and_bad_ones_are_refused(void **unused)
+{
+	(void)unused;
+	static struct env a, b;
+	env_init(&a);
+	env_init(&b);
+	char err[300];
+	struct human_def hd = human_default_def(HUMAN_MALE);
+	int jack = env_add_figure(&a, human_build(&hd, err, sizeof err), "jack", 1, &hd, NULL);
+	int crate = env_add_figure(&a, human_build(&hd, err, sizeof err), "crate", 1, &hd, NULL);
+	assert_true(jack >= 0 && crate >= 0);
+	a.fig[jack].behave = calloc(1, sizeof *a.fig[jack].behave);
+	assert_int_equal(behave_attach(a.fig[jack].behave, a.fig[jack].model, a.fig[jack].state,
+				       a.fig[jack].ik, NULL), 0);
+	assert_int_equal(attach_grab(&a, jack, 1, crate, err, sizeof err), 0);
+	assert_int_equal(attach_grab(&a, jack, 1, crate, err, sizeof err), -1); /* held already */
+	assert_int_equal(attach_grab(&a, crate, 0, jack, err, sizeof err), -1); /* crate does not behave */
+	size_t la, lb;
+	char *ta = session_to_string(&a, &la), *tb;
+	assert_non_null(strstr(ta, "\nattach jack limb=hand side=right kind=grab object=crate segment="));
+	assert_int_equal(session_read(ta, la, ".", NULL, &b, err, sizeof err), 0);
+	tb = session_to_string(&b, &lb);
+	assert_int_equal(la, lb);
+	assert_memory_equal(ta, tb, la);
+	free(tb);
+	env_clear(&b);
+	/* each field broken in turn: the whole session is refused */
+	const char *breaks[][2] = { { "limb=hand", "limb=wing" }, { "side=right", "side=up" },
+				    { "kind=grab", "kind=hug" }, { "object=crate", "object=nobody" },
+				    { "attach jack", "attach crate" }, { "rel=", "rel=1," } };
+	for (size_t i = 0; i < sizeof breaks / sizeof *breaks; i++) {
+		char *t = malloc(la + 16), *at = strstr(ta, breaks[i][0]);
+		assert_non_null(at);
+		size_t head = (size_t)(at - ta), ol = strlen(breaks[i][0]);
+		memcpy(t, ta, head);
+		strcpy(t + head, breaks[i][1]);
+		strcat(t, ta + head + ol);
+		env_init(&b);
+		assert_int_equal(session_read(t, strlen(t), ".", NULL, &b, err, sizeof err), -1);
+		assert_int_equal(env_count(&b), 0);
+		free(t);
+	}
+	free(ta);
+	/* unloading the object lets go */
+	env_remove_figure(&a, crate);
+	assert_int_equal(attach_find(&a, jack, ATTACH_HAND, 1), -1);
+	env_clear(&a);
+}
+
 static void
 test_bad_sessions_load_nothing(void **unused)
 {
@@ -185,6 +237,7 @@ main(void)
 		cmocka_unit_test(test_words_split_quotes_tags_and_limits),
 		cmocka_unit_test(test_numbers_take_units_and_refuse_non_finite),
 		cmocka_unit_test(test_session_round_trip_is_exact),
+		cmocka_unit_test(test_attachments_round_trip_and_bad_ones_are_refused),
 		cmocka_unit_test(test_bad_sessions_load_nothing),
 		cmocka_unit_test(test_posture_file_applies_by_name_and_checks_first),
 	};

@@ -1,6 +1,9 @@
 """Behaviours through the daemon (issue 6): the figures of Chapter 5 by commands, and
 behaviour state that survives kill -9 exactly."""
+from conftest import ROOT
 from daemon import Daemon, daemon, daemon_factory  # noqa: F401 (fixtures)
+
+LIBRARY = ["--library", str(ROOT / "src" / "figures")]  # lib:box.fig, lib:table.fig
 
 
 def settled(c, frames=400):
@@ -143,3 +146,126 @@ def test_past_a_foot_the_support_foot_steps_out_sideways(daemon):
         assert after[0][0] - feet[0][0] > 0.15
         assert max(abs(x - y) for x, y in zip(after[1], feet[1])) < 2e-3
         assert b["balance"]["margin"] > 0
+
+
+def matmul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def transpose(a):
+    return [list(r) for r in zip(*a)]
+
+
+def relative(c, frame, other):
+    """other's pose in frame's: (position, rotation), from two `get site` replies."""
+    f, o = c.request(f"get site {frame}"), c.request(f"get site {other}")
+    rf, ro = f["rotation"], o["rotation"]
+    if len(rf) == 9:
+        rf, ro = [rf[0:3], rf[3:6], rf[6:9]], [ro[0:3], ro[3:6], ro[6:9]]
+    d = [o["position"][i] - f["position"][i] for i in range(3)]
+    rt = transpose(rf)
+    return [sum(rt[i][k] * d[k] for k in range(3)) for i in range(3)], matmul(rt, ro)
+
+
+def close(a, b, tol):
+    pa, ra = a
+    pb, rb = b
+    return (max(abs(x - y) for x, y in zip(pa, pb)) < tol and
+            max(abs(ra[i][j] - rb[i][j]) for i in range(3) for j in range(3)) < tol)
+
+
+def test_a_grabbed_object_follows_the_hand_until_released(daemon_factory):
+    """Figure 5.10 / Table D.4: after `grab` the box keeps its pose in the palm's frame
+    while the hand is dragged; after `release` the box stays where it was put."""
+    with daemon_factory(extra=LIBRARY).client() as c:
+        c.request("load human as jack")
+        c.request("behave jack on")
+        c.request("load figure lib:box.fig as box")
+        c.request("set location box -0.25 0.75 0.35")
+        settled(c)
+        c.request("grab jack right box")
+        held = relative(c, "jack hand_r.palm", "box box.base")
+        c.request("move hand jack right -0.15,1.1,0.4")
+        settled(c)
+        assert close(relative(c, "jack hand_r.palm", "box box.base"), held, 1e-9)
+        palm = c.request("get site jack hand_r.palm")["position"]
+        assert max(abs(a - b) for a, b in zip(palm, (-0.15, 1.1, 0.4))) < 2e-3
+        b = c.request("get behavior jack")
+        assert b["attachments"] == [{"limb": "hand", "side": "right", "kind": "grab",
+                                     "object": "box", "segment": "box"}]
+        # the box is its own figure still: it cannot behave while held, nor be grabbed twice
+        assert c.request_reply("grab jack left box")["ok"] is False
+        assert c.request_reply("grab jack right jack")["ok"] is False
+        assert c.request("release hand jack right") == {"released": True}
+        put = c.request("get site box box.base")
+        c.request("move hand jack right -0.3,0.9,0.2")
+        settled(c)
+        assert c.request("get site box box.base") == put
+        assert c.request("release hand jack right") == {"released": False}
+
+
+def test_a_hand_holding_a_local_location_follows_the_object(daemon_factory):
+    """Hold local location: the hand keeps its place on the table; when the table is
+    moved, the hand goes with it (±2 mm), the rest of the body keeps its constraints."""
+    with daemon_factory(extra=LIBRARY).client() as c:
+        c.request("load human as jack")
+        c.request("behave jack on")
+        c.request("load figure lib:table.fig as table")
+        c.request("set location table 0 0 0.75")
+        c.request("move hand jack right -0.2,0.95,0.3")
+        settled(c)
+        c.request("hold hand jack right table.table")
+        before = c.request("get site jack hand_r.palm")["position"]
+        feet = [c.request(f"get site jack toes_{s}.toe")["position"] for s in "lr"]
+        c.request("set location table 0.05 0 0.70")  # 5 cm left, 5 cm nearer
+        settled(c)
+        after = c.request("get site jack hand_r.palm")["position"]
+        want = (before[0] + 0.05, before[1], before[2] - 0.05)
+        assert max(abs(a - b) for a, b in zip(after, want)) < 2e-3, (after, want)
+        for s, f in zip("lr", feet):
+            now = c.request(f"get site jack toes_{s}.toe")["position"]
+            assert max(abs(a - b) for a, b in zip(now, f)) < 1e-3
+        b = c.request("get behavior jack")
+        assert b["attachments"][0]["kind"] == "local"
+        assert b["attachments"][0]["object"] == "table"
+        # moving the hand by command lets go of the table
+        c.request("move hand jack right -0.2,1.0,0.2")
+        assert c.request("get behavior jack")["attachments"] == []
+        assert c.request_reply("hold hand jack right table.nothing")["ok"] is False
+        assert c.request_reply("hold hand jack middle table")["ok"] is False
+
+
+def test_grabs_survive_kill_9_and_session_files():
+    """The attachment is state: it comes back after kill -9 (journal and snapshot), and
+    a saved session reloads with it, the box still following the hand."""
+    d = Daemon(extra=LIBRARY)
+    d.start()
+    try:
+        with d.client() as c:
+            c.request("load human as jack")
+            c.request("behave jack on")
+            c.request("load figure lib:box.fig as box")
+            c.request("set location box -0.25 0.75 0.35")
+            c.request("grab jack right box")
+            c.request("move hand jack right -0.15,1.1,0.4")
+            settled(c)
+            before = (c.request("get behavior jack"), c.request("get site box box.base"),
+                      c.request("get posture jack"))
+            c.request("save session grab.session")
+        d.kill9()
+        d.start()
+        with d.client() as c:
+            after = (c.request("get behavior jack"), c.request("get site box box.base"),
+                     c.request("get posture jack"))
+            assert after == before
+            c.request("unload figure box")
+            assert c.request("get behavior jack")["attachments"] == []
+            c.request("load session grab.session")
+            assert c.request("get behavior jack")["attachments"] == before[0]["attachments"]
+            held = relative(c, "jack hand_r.palm", "box box.base")
+            c.request("move hand jack right -0.1,1.0,0.3")
+            settled(c)
+            assert close(relative(c, "jack hand_r.palm", "box box.base"), held, 1e-9)
+    finally:
+        d.stop()
+        d.cleanup()
