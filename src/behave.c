@@ -219,6 +219,7 @@ find_all(struct behave *b, const struct model *m)
 		SITE(b->s_palm[k], "hand_%s.palm%.0s", k);
 		SITE(b->s_hip[k], "pelvis.hip_%s%.0s", k);
 		SITE(b->s_knee[k], "shank_%s.knee%.0s", k);
+		SITE(b->s_shoulder[k], "clavicle_%s.shoulder_%s", k);
 		snprintf(name, sizeof name, "clavicle_%s", sfx[k]);
 		bad |= (b->j_clav[k] = model_find_joint(m, name)) < 0;
 		snprintf(name, sizeof name, "eye_%s", sfx[k]);
@@ -623,6 +624,74 @@ behave_move_hand(struct behave *b, const struct model *m, struct state *s, struc
 	ik_set(ik, m, b->c_hand[side], &d);
 }
 
+/* v in the chest's frame (x left, y up, z forward) */
+static void
+in_chest(const struct behave *b, const struct state *s, const double v[3], double dest[3])
+{
+	const double *r = s->site_xf[b->s_chest].r;
+	for (int i = 0; i < 3; i++)
+		dest[i] = r[i] * v[0] + r[3 + i] * v[1] + r[6 + i] * v[2];
+}
+
+enum hand_region
+behave_hand_region(const struct behave *b, const struct state *s, int side, const double p[3])
+{
+	const double sigma = side ? -1 : 1; /* the arm's outward direction along the chest's x */
+	const double *sh = s->site_xf[b->s_shoulder[side]].p, *ch = s->site_xf[b->s_chest].p;
+	double w[3] = { p[0] - sh[0], p[1] - sh[1], p[2] - sh[2] }, c[3] = { p[0] - ch[0], p[1] - ch[1], p[2] - ch[2] };
+	double d[3], mid[3];
+	in_chest(b, s, w, d);
+	in_chest(b, s, c, mid);
+	double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+	if (sigma * mid[0] < -0.05) /* past the body's midline */
+		return REGION_ACROSS;
+	if (len < 1e-9 || d[1] / len < -0.7) /* within 45 degrees of straight down */
+		return REGION_HANG;
+	return sigma * d[0] / len > 0.7 ? REGION_SIDE : REGION_FORWARD_UP;
+}
+
+void
+behave_predict_hand(const struct behave *b, const struct state *s, int side, struct xform *goal)
+{
+	const double *palm = s->site_xf[b->s_palm[side]].p;
+	enum hand_region to = behave_hand_region(b, s, side, goal->p);
+	if (to == behave_hand_region(b, s, side, palm))
+		return;
+	const double sigma = side ? -1 : 1;
+	const double *r = s->site_xf[b->s_chest].r, *sh = s->site_xf[b->s_shoulder[side]].p;
+	double X[3] = { r[0], r[3], r[6] }, Z[3] = { r[2], r[5], r[8] };
+	/* the fingers carry on the line of the arm, shoulder to hand */
+	double f[3] = { goal->p[0] - sh[0], goal->p[1] - sh[1], goal->p[2] - sh[2] };
+	double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+	if (fl < 1e-6)
+		return;
+	double n[3]; /* where the palm should face */
+	for (int i = 0; i < 3; i++) {
+		f[i] /= fl;
+		n[i] = to == REGION_SIDE ? Z[i] : to == REGION_ACROSS ? -Z[i] : -sigma * X[i];
+	}
+	double along = n[0] * f[0] + n[1] * f[1] + n[2] * f[2];
+	for (int i = 0; i < 3; i++)
+		n[i] -= along * f[i];
+	double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	if (nl < 1e-6)
+		return;
+	/* the palm site's axes: fingers -y, palm toward -sigma x, thumb z (human.c) */
+	double cx[3], cy[3], cz[3];
+	for (int i = 0; i < 3; i++) {
+		cx[i] = -sigma * n[i] / nl;
+		cy[i] = -f[i];
+	}
+	cz[0] = cx[1] * cy[2] - cx[2] * cy[1];
+	cz[1] = cx[2] * cy[0] - cx[0] * cy[2];
+	cz[2] = cx[0] * cy[1] - cx[1] * cy[0];
+	for (int i = 0; i < 3; i++) {
+		goal->r[3 * i] = cx[i];
+		goal->r[3 * i + 1] = cy[i];
+		goal->r[3 * i + 2] = cz[i];
+	}
+}
+
 void
 behave_move_head(struct behave *b, struct ik *ik, const double point[3])
 {
@@ -722,6 +791,7 @@ behave_pack(const struct behave *b, double *dest, int max)
 	PACK_PUT(p->twist_limit);
 	PACK_PUT(p->step_frames);
 	PACK_PUT(p->foot_follows_line);
+	PACK_PUT(p->hands_laban);
 	PACK_PUT(p->stability_threshold);
 	PACK_PUT(b->leg_length);
 	PACK_PUT(b->bal_x);
@@ -785,6 +855,7 @@ behave_unpack(struct behave *b, const struct model *m, const double *v, int nv)
 	p->twist_limit = PACK_GET();
 	p->step_frames = (int)PACK_GET();
 	p->foot_follows_line = (int)PACK_GET();
+	p->hands_laban = (int)PACK_GET();
 	p->stability_threshold = PACK_GET();
 	fresh.leg_length = PACK_GET();
 	fresh.bal_x = PACK_GET();

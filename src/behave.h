@@ -55,6 +55,7 @@ struct behave_params {
 	enum foot_behavior foot[2];
 	enum heel_behavior heel[2];
 	int foot_follows_line;    /* a moved foot keeps its angle to the balance line (§D.2.2) */
+	int hands_laban;          /* a moved hand takes Labanotation's palm orientation (§D.2.4) */
 	int hold_elevation;       /* the centre of mass keeps its height (§D.1.2) */
 	enum torso_behavior torso;
 	int fixate_head, fixate_eyes;
@@ -94,7 +95,7 @@ struct behave {
 	int c_toe[2], c_heel[2], c_balance, c_pelvis, c_torso, c_head, c_eye[2], c_hand[2];
 	/* sites and joints used every frame */
 	int s_toe[2], s_heel[2], s_tip[2], s_pelvis, s_lower, s_chest, s_head, s_eye[2], s_palm[2];
-	int s_hip[2], s_knee[2];
+	int s_hip[2], s_knee[2], s_shoulder[2];
 	int j_clav[2], j_spine0, j_neck, j_eye[2];
 	double leg_length;        /* hip height standing, for the 70 % rule */
 	/* what the behaviours hold */
@@ -179,6 +180,18 @@ void behave_rotate_pelvis(struct behave *b, const struct model *m, struct state 
 /* the palm (or, from_wrist, the forearm just above the wrist) to goal */
 void behave_move_hand(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
 		      int side, const struct xform *goal, int from_wrist);
+/*
+ * Hands maintain consistent orientation (§D.2.4): the arm's region for a
+ * palm at p (relative to the shoulder, in the chest's frame), and the
+ * palm orientation Labanotation gives a hand arriving at goal->p from
+ * another region (palms in when hanging, facing each other raised forward
+ * or up, forward when out to the side, backward across the body). Within
+ * one region the goal's orientation is left as it is.
+ */
+enum hand_region { REGION_HANG, REGION_FORWARD_UP, REGION_SIDE, REGION_ACROSS };
+enum hand_region behave_hand_region(const struct behave *b, const struct state *s, int side,
+				    const double p[3]);
+void behave_predict_hand(const struct behave *b, const struct state *s, int side, struct xform *goal);
 void behave_move_head(struct behave *b, struct ik *ik, const double point[3]);
 void behave_move_eyes(struct behave *b, struct ik *ik, const double point[3]);
 

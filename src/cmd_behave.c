@@ -133,7 +133,7 @@ choice(struct cmd_ctx *c, const char *key, const char *a, const char *b, int va,
 static const char *const behavior_keys[] = {
 	"foot", "foot_l", "foot_r", "heel", "heel_l", "heel_r", "elevation", "torso", "head", "eyes",
 	"hands", "hand_l", "hand_r", "follow_feet", "pelvis_follows", "auto_root", "com_root",
-	"step", "twist_step", "foot_orient", "stability"
+	"step", "twist_step", "foot_orient", "hand_orient", "stability"
 };
 
 int
@@ -170,7 +170,8 @@ cmd_set_behavior(struct cmd_ctx *c)
 		p.heel[k] = (enum heel_behavior)hk;
 	}
 	p.hold_elevation = elev;
-	if (choice(c, "foot_orient", "global", "line", 0, 1, &p.foot_follows_line) < 0)
+	if (choice(c, "foot_orient", "global", "line", 0, 1, &p.foot_follows_line) < 0 ||
+	    choice(c, "hand_orient", "global", "laban", 0, 1, &p.hands_laban) < 0)
 		return -1;
 	const char *th = cmd_key(c, "stability");
 	if (th && (words_number(th, UNIT_LENGTH, &p.stability_threshold) < 0 ||
@@ -233,6 +234,7 @@ cmd_get_behavior(struct cmd_ctx *c)
 	json_object_set_new(p, "step", json_boolean(b->p.step_when_losing_balance));
 	json_object_set_new(p, "twist_step", json_boolean(b->p.step_when_twisted));
 	json_object_set_new(p, "foot_orient", json_string(b->p.foot_follows_line ? "line" : "global"));
+	json_object_set_new(p, "hand_orient", json_string(b->p.hands_laban ? "laban" : "global"));
 	json_object_set_new(p, "stability", json_real(b->p.stability_threshold));
 	json_object_set_new(bal, "x", json_real(b->bal.x));
 	json_object_set_new(bal, "z", json_real(b->bal.z));
@@ -378,6 +380,8 @@ cmd_move_hand(struct cmd_ctx *c)
 	memcpy(g.p, p, sizeof p);
 	if (turned)
 		memcpy(g.r, r, sizeof r);
+	else if (b->p.hands_laban)
+		behave_predict_hand(b, f->state, side, &g);
 	drop_local_hold(c, f, ATTACH_HAND, side);
 	behave_move_hand(b, f->model, f->state, f->ik, side, &g, from && !strcmp(from, "wrist"));
 	return 0;

@@ -329,6 +329,83 @@ test_stability_alert_edges(void **unused)
 	rig_free(&r);
 }
 
+/* the palm's facing direction (the site's -sigma x axis, human.c) */
+static void
+palm_normal(const struct rig *r, int side, double n[3])
+{
+	const double *R = r->s->site_xf[r->b.s_palm[side]].r, sigma = side ? -1 : 1;
+	for (int i = 0; i < 3; i++)
+		n[i] = -sigma * R[3 * i];
+}
+
+/* moves the hand to shoulder + d (chest axes are the world's here) and reports the palm */
+static double
+palm_facing(struct rig *r, int side, const double d[3], const double want[3], enum hand_region *region)
+{
+	const double *sh = r->s->site_xf[r->b.s_shoulder[side]].p;
+	struct xform g = r->s->site_xf[r->b.s_palm[side]];
+	for (int i = 0; i < 3; i++)
+		g.p[i] = sh[i] + d[i];
+	*region = behave_hand_region(&r->b, r->s, side, g.p);
+	behave_predict_hand(&r->b, r->s, side, &g);
+	behave_move_hand(&r->b, r->m, r->s, r->ik, side, &g, 0);
+	frames(r, 40);
+	/* the rule's direction as near as a palm on the line of the arm can face it */
+	double dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), f[3], w[3], n[3];
+	for (int i = 0; i < 3; i++)
+		f[i] = d[i] / dl;
+	double along = want[0] * f[0] + want[1] * f[1] + want[2] * f[2];
+	for (int i = 0; i < 3; i++)
+		w[i] = want[i] - along * f[i];
+	double wl = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+	palm_normal(r, side, n);
+	return acos(fmin(1, (n[0] * w[0] + n[1] * w[1] + n[2] * w[2]) / wl)) / DEG;
+}
+
+/* §D.2.4: Labanotation's palm rules as a moved hand changes region */
+static void
+test_hands_maintain_consistent_orientation(void **unused)
+{
+	(void)unused;
+	struct behave_params p = behave_default_params();
+	p.hands_laban = 1;
+	struct rig r;
+	rig_make(&r, &p);
+	frames(&r, 3);
+	const int L = BEHAVE_LEFT;
+	const double in[3] = { -1, 0, 0 }, forward[3] = { 0, 0, 1 }, backward[3] = { 0, 0, -1 };
+	enum hand_region reg;
+	/* raised forward to shoulder height: palms face each other (in, for the left hand) */
+	double a = palm_facing(&r, L, (double[3]){ 0, -0.05, 0.50 }, in, &reg);
+	printf("forward: palm %.1f deg from facing in\n", a);
+	assert_int_equal(reg, REGION_FORWARD_UP);
+	assert_true(a < 10);
+	/* out to the side: palms face forward */
+	a = palm_facing(&r, L, (double[3]){ 0.50, -0.05, 0.05 }, forward, &reg);
+	printf("side: palm %.1f deg from facing forward\n", a);
+	assert_int_equal(reg, REGION_SIDE);
+	assert_true(a < 10);
+	/* a small move within the region keeps the orientation as it is */
+	double before[3], after[3];
+	palm_normal(&r, L, before);
+	palm_facing(&r, L, (double[3]){ 0.48, 0.02, 0.10 }, forward, &reg);
+	palm_normal(&r, L, after);
+	assert_int_equal(reg, REGION_SIDE);
+	assert_true(before[0] * after[0] + before[1] * after[1] + before[2] * after[2] > cos(2 * DEG));
+	/* across the body: palms face backward */
+	a = palm_facing(&r, L, (double[3]){ -0.32, -0.15, 0.30 }, backward, &reg);
+	printf("across: palm %.1f deg from facing backward\n", a);
+	assert_int_equal(reg, REGION_ACROSS);
+	assert_true(a < 10);
+	/* hanging by the side again: palms face in */
+	a = palm_facing(&r, L, (double[3]){ 0.02, -0.60, 0.02 }, in, &reg);
+	printf("hanging: palm %.1f deg from facing in\n", a);
+	assert_int_equal(reg, REGION_HANG);
+	assert_true(a < 10);
+	snapshot(&r, "hands-laban", FRONT);
+	rig_free(&r);
+}
+
 /* Figure 5.7: bending forward 45 degrees shifts the hips back, balanced, feet planted */
 static void
 test_fig_5_7_bend_torso_keeps_balance(void **unused)
@@ -494,6 +571,7 @@ main(void)
 		cmocka_unit_test(test_step_to_the_side),
 		cmocka_unit_test(test_foot_orientation_follows_balance_line),
 		cmocka_unit_test(test_stability_alert_edges),
+		cmocka_unit_test(test_hands_maintain_consistent_orientation),
 		cmocka_unit_test(test_fig_5_7_bend_torso_keeps_balance),
 		cmocka_unit_test(test_hands_on_hips_survive_a_bend),
 		cmocka_unit_test(test_fig_5_8_rotate_pelvis_keeps_chest_vertical),
