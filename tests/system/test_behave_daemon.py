@@ -1,5 +1,7 @@
 """Behaviours through the daemon (issue 6): the figures of Chapter 5 by commands, and
 behaviour state that survives kill -9 exactly."""
+import math
+
 from conftest import ROOT
 from daemon import Daemon, daemon, daemon_factory  # noqa: F401 (fixtures)
 
@@ -269,3 +271,142 @@ def test_grabs_survive_kill_9_and_session_files():
     finally:
         d.stop()
         d.cleanup()
+
+
+def site(c, ref):
+    """(position, 3x3 rotation rows) of a site."""
+    r = c.request(f"get site {ref}")
+    rot = r["rotation"]
+    if len(rot) == 9:
+        rot = [rot[0:3], rot[3:6], rot[6:9]]
+    return r["position"], rot
+
+
+def angle_deg(u, v):
+    dot = sum(a * b for a, b in zip(u, v))
+    nu = sum(a * a for a in u) ** 0.5
+    nv = sum(b * b for b in v) ** 0.5
+    return math.degrees(math.acos(max(-1.0, min(1.0, dot / (nu * nv)))))
+
+
+def toes(c):
+    return [site(c, f"jack toes_{s}.toe")[0] for s in "lr"]
+
+
+def near(a, b, tol):
+    return max(abs(x - y) for x, y in zip(a, b)) < tol
+
+
+def behaving_jack(c):
+    c.request("load human as jack")
+    c.request("behave jack on")
+    settled(c)
+
+
+def test_fig_5_3_moving_a_foot_keeps_the_balance_parameters(daemon):
+    """Figure 5.3 by commands: with "balance point follows feet" the balance point's x and
+    z stay (±0.02) as the left foot moves; with it off the point stays put in space."""
+    for follow in ("on", "off"):
+        with daemon.client() as c:
+            behaving_jack(c)
+            c.request(f"set behavior jack follow_feet={follow}")
+            b0 = c.request("get behavior jack")["balance"]
+            toe = site(c, "jack toes_l.toe")[0]
+            c.request(f"move foot jack left {toe[0] + 0.05},{toe[1]},{toe[2] + 0.20}")
+            settled(c)
+            assert near(site(c, "jack toes_l.toe")[0], (toe[0] + 0.05, toe[1], toe[2] + 0.20), 2e-3)
+            b1 = c.request("get behavior jack")["balance"]
+            moved = math.dist(b0["point"], b1["point"])
+            if follow == "on":
+                assert abs(b1["x"] - b0["x"]) < 0.02 and abs(b1["z"] - b0["z"]) < 0.02
+                assert moved > 0.03
+            else:
+                assert moved < 5e-3
+            c.request("unload figure jack")
+
+
+def test_fig_5_5_lowering_the_centre_of_mass_squats_and_roots_the_lower_torso(daemon):
+    """Figure 5.5 by commands: 40 cm down, the hips stay square and the root moves to the
+    lower torso (the centre of mass is below 70 % of the leg's length)."""
+    with daemon.client() as c:
+        behaving_jack(c)
+        hips0 = site(c, "jack pelvis.lower_torso")[0][1]
+        c.request("move com jack 0 0 -0.40")
+        settled(c)
+        b = c.request("get behavior jack")
+        assert b["root"] == "lower torso"
+        hips, pelvis = site(c, "jack pelvis.lower_torso")
+        assert hips[1] < hips0 - 0.25
+        assert abs(pelvis[1][0]) < math.sin(math.radians(3))  # its x axis stays level
+
+
+def test_fig_5_7_bending_forward_keeps_balance_with_feet_planted(daemon):
+    """Figure 5.7 by commands: a 45 degree bend from the waist moves the hips back, the
+    centre of mass stays over the balance point (±5 mm), both feet stay (±1 mm)."""
+    with daemon.client() as c:
+        behaving_jack(c)
+        feet = toes(c)
+        hips0 = site(c, "jack pelvis.lower_torso")[0][2]
+        c.request("bend torso jack 45deg 0 0 flavor=waist")
+        settled(c)
+        b = c.request("get behavior jack")["balance"]
+        assert math.dist(b["point"], b["held"]) < 5e-3
+        assert site(c, "jack pelvis.lower_torso")[0][2] < hips0 - 0.03
+        for a, f in zip(toes(c), feet):
+            assert near(a, f, 1e-3)
+
+
+def test_fig_5_8_pelvis_rotation_keeps_the_chest_vertical_and_a_twist_steps(daemon):
+    """Figure 5.8 by commands: curling the pelvis 20 degrees leaves the chest vertical
+    (±2 degrees); twisting it 70 degrees about the vertical makes the figure step."""
+    with daemon.client() as c:
+        behaving_jack(c)
+        c.request("rotate pelvis jack rot=x,20deg")
+        settled(c)
+        _, chest = site(c, "jack T5.chest")
+        _, pelvis = site(c, "jack pelvis.lower_torso")
+        up_chest = [chest[0][1], chest[1][1], chest[2][1]]
+        up_pelvis = [pelvis[0][1], pelvis[1][1], pelvis[2][1]]
+        assert angle_deg(up_chest, (0, 1, 0)) < 2
+        assert angle_deg(up_pelvis, (0, 1, 0)) > 12
+        c.request("unload figure jack")
+        behaving_jack(c)
+        c.request("rotate pelvis jack yaw=70deg")
+        settled(c)
+        assert c.request("get behavior jack")["steps"] >= 1
+
+
+def test_fig_5_9_5_10_a_hand_moves_while_head_and_eyes_stay_fixated(daemon):
+    """Figures 5.9 / 5.10 by commands: the head and both eyes fixate a point (±1 degree,
+    measured from the sites' own axes), the hand reaches its goal, the feet stay, and
+    hands on hips survive a torso bend."""
+    with daemon.client() as c:
+        behaving_jack(c)
+        feet = toes(c)
+        look = (0.6, 1.2, 1.5)
+        c.request("move head jack {},{},{}".format(*look))
+        c.request("move eyes jack {},{},{}".format(*look))
+        c.request("set behavior jack hand_orient=laban")  # a natural palm for the reach
+        c.request("move hand jack right -0.25,1.15,0.35")
+        settled(c)
+        assert near(site(c, "jack hand_r.palm")[0], (-0.25, 1.15, 0.35), 1e-3)
+        for ref in ("head.between_eyes", "eyeball_l.gaze", "eyeball_r.gaze"):
+            p, rot = site(c, f"jack {ref}")
+            axis = [rot[0][2], rot[1][2], rot[2][2]]  # the aim axis: the site's z
+            to = [look[i] - p[i] for i in range(3)]
+            assert angle_deg(axis, to) < 1, ref
+        for a, f in zip(toes(c), feet):
+            assert near(a, f, 1e-3)
+        # hands on hips survive a bend
+        c.request("set behavior jack hands=hips head=release eyes=release")
+        settled(c)
+        c.request("bend torso jack 30deg 0 0")
+        settled(c)
+        cons = c.request("get behavior jack")["parameters"]
+        assert cons["hand_l"] == "hips" and cons["hand_r"] == "hips"
+        # each palm on the side of its hip: 7 cm out and 6 cm up in the hip site's frame
+        for s, sigma in (("l", 1), ("r", -1)):
+            hip, rot = site(c, f"jack pelvis.hip_{s}")
+            off = (sigma * 0.07, 0.06, 0.0)
+            want = [hip[i] + sum(rot[i][k] * off[k] for k in range(3)) for i in range(3)]
+            assert math.dist(site(c, f"jack hand_{s}.palm")[0], want) < 5e-3, s
