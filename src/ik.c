@@ -560,10 +560,12 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 			break;
 		}
 		run->res->iterations++;
-		/* a start that has stopped making headway gives way to the next one */
+		/* a start that has stopped making headway gives way to the next one
+		 * (counted whether or not restarts are allowed: max_iter bounds it) */
+		double f_8ago = since_start >= 8 ? recent[since_start % 8] : INFINITY;
 		recent[since_start % 8] = f;
-		if (restarts_left > 0 && ++since_start > opt->restart_after && since_start > 8 &&
-		    f > 0.5 * recent[since_start % 8])
+		since_start++;
+		if (restarts_left > 0 && since_start > opt->restart_after && f > 0.5 * f_8ago)
 			goto stationary;
 		/* a variable came off or onto a bound: the metric is stale */
 		int changed = 0;
