@@ -101,19 +101,30 @@ send_event(struct loop *L, unsigned kind)
 	}
 }
 
+/* starts event kind in L->ev: {"event":kind,"frame":N[,"figure":name] */
+static struct jbuf *
+event_begin(struct loop *L, const char *kind, const char *figure)
+{
+	struct jbuf *j = &L->ev;
+	jbuf_reset(j);
+	jbuf_raw(j, "{\"event\":");
+	jbuf_str(j, kind);
+	jbuf_key(j, "frame", 0);
+	jbuf_int(j, (long long)L->d.stats.frame);
+	if (figure) {
+		jbuf_key(j, "figure", 0);
+		jbuf_str(j, figure);
+	}
+	return j;
+}
+
 static void
 posture_event(struct loop *L, int fig)
 {
 	if (!has_subscribers(L, SUB_POSTURE))
 		return;
 	const struct env_figure *f = &L->d.env.fig[fig];
-	struct jbuf *j = &L->ev;
-	jbuf_reset(j);
-	jbuf_raw(j, "{\"event\":\"posture\"");
-	jbuf_key(j, "frame", 0);
-	jbuf_int(j, (long long)L->d.stats.frame);
-	jbuf_key(j, "figure", 0);
-	jbuf_str(j, f->name);
+	struct jbuf *j = event_begin(L, "posture", f->name);
 	jbuf_key(j, "q", 0);
 	jbuf_vec(j, f->state->q, f->model->ndof);
 	jbuf_key(j, "com", 0);
@@ -144,11 +155,7 @@ message_event(struct loop *L)
 {
 	if (!has_subscribers(L, SUB_MESSAGE))
 		return;
-	struct jbuf *j = &L->ev;
-	jbuf_reset(j);
-	jbuf_raw(j, "{\"event\":\"message\"");
-	jbuf_key(j, "frame", 0);
-	jbuf_int(j, (long long)L->d.stats.frame);
+	struct jbuf *j = event_begin(L, "message", NULL);
 	jbuf_key(j, "text", 0);
 	jbuf_str(j, L->d.message);
 	jbuf_raw(j, "}");
@@ -164,13 +171,7 @@ telemetry_event(struct loop *L, int fig, const struct ik_result *r, uint64_t bud
 	struct env *e = &L->d.env;
 	const struct env_figure *f = &e->fig[fig];
 	const struct model *m = f->model;
-	struct jbuf *j = &L->ev;
-	jbuf_reset(j);
-	jbuf_raw(j, "{\"event\":\"telemetry\"");
-	jbuf_key(j, "frame", 0);
-	jbuf_int(j, (long long)L->d.stats.frame);
-	jbuf_key(j, "figure", 0);
-	jbuf_str(j, f->name);
+	struct jbuf *j = event_begin(L, "telemetry", f->name);
 	jbuf_key(j, "budget_us", 0);
 	jbuf_int(j, (long long)budget);
 	jbuf_key(j, "used_us", 0);
@@ -249,14 +250,8 @@ stability_events(struct loop *L, int fig)
 {
 	const struct env_figure *f = &L->d.env.fig[fig];
 	const struct behave *b = f->behave;
-	struct jbuf *j = &L->ev;
 	if (b->stability_changed && has_subscribers(L, SUB_ALERT)) {
-		jbuf_reset(j);
-		jbuf_raw(j, "{\"event\":\"alert\"");
-		jbuf_key(j, "frame", 0);
-		jbuf_int(j, (long long)L->d.stats.frame);
-		jbuf_key(j, "figure", 0);
-		jbuf_str(j, f->name);
+		struct jbuf *j = event_begin(L, "alert", f->name);
 		jbuf_key(j, "stability", 0);
 		jbuf_str(j, b->stability_low ? "low" : "ok");
 		balance_fields(j, b);
@@ -265,12 +260,7 @@ stability_events(struct loop *L, int fig)
 	}
 	if (!has_subscribers(L, SUB_STABILITY))
 		return;
-	jbuf_reset(j);
-	jbuf_raw(j, "{\"event\":\"stability\"");
-	jbuf_key(j, "frame", 0);
-	jbuf_int(j, (long long)L->d.stats.frame);
-	jbuf_key(j, "figure", 0);
-	jbuf_str(j, f->name);
+	struct jbuf *j = event_begin(L, "stability", f->name);
 	balance_fields(j, b);
 	jbuf_key(j, "low", 0);
 	jbuf_bool(j, b->stability_low);

@@ -34,15 +34,12 @@ def test_shifting_weight_keeps_the_feet_and_centres_the_mass(daemon):
     """Figure 5.4 by commands: both feet stay put to the millimetre, the centre of mass
     ends over the new balance point."""
     with daemon.client() as c:
-        c.request("load human as jack")
-        c.request("behave jack on")
-        settled(c)
-        feet = [c.request(f"get site jack toes_{s}.toe")["position"] for s in "lr"]
+        behaving_jack(c)
+        feet = toes(c)
         c.request("move com jack 0.07 0")
         settled(c)
-        after = [c.request(f"get site jack toes_{s}.toe")["position"] for s in "lr"]
-        for a, b in zip(feet, after):
-            assert max(abs(x - y) for x, y in zip(a, b)) < 1e-3
+        for a, b in zip(feet, toes(c)):
+            assert near(a, b, 1e-3)
         b = c.request("get behavior jack")
         held, point = b["balance"]["held"], b["balance"]["point"]
         assert max(abs(x - y) for x, y in zip(held, point)) < 5e-3
@@ -136,13 +133,11 @@ def test_past_a_foot_the_support_foot_steps_out_sideways(daemon):
     """§D.3.1: with the balance point pushed out past the left foot, the left (support)
     foot steps out to the side; the right foot stays; the balance ends inside."""
     with daemon.client() as c:
-        c.request("load human as jack")
-        c.request("behave jack on")
-        settled(c)
-        feet = [c.request(f"get site jack toes_{s}.toe")["position"] for s in "lr"]
+        behaving_jack(c)
+        feet = toes(c)
         c.request("move com jack 0.20 0")
         settled(c)
-        after = [c.request(f"get site jack toes_{s}.toe")["position"] for s in "lr"]
+        after = toes(c)
         b = c.request("get behavior jack")
         assert b["steps"] >= 1 and not b["stepping"]
         assert after[0][0] - feet[0][0] > 0.15
