@@ -7,11 +7,11 @@
 
 #include "kin.h"
 
-/* the limb's effector: the palm, or the toes */
+/* the limb's effector: the palm, or the toes (the heel when seated) */
 static int
 effector_site(const struct behave *b, enum attach_limb limb, int side)
 {
-	return limb == ATTACH_HAND ? b->s_palm[side] : b->s_toe[side];
+	return limb == ATTACH_HAND ? b->s_palm[side] : behave_foot_site(b, side);
 }
 
 int

@@ -99,6 +99,7 @@ toe_def(const struct behave *b, const struct state *s, int side, struct ik_const
 	} else {
 		d->ori = IK_FRAME;
 	}
+	d->enabled = !b->p.seated; /* seated, the heel holds the foot */
 }
 
 static void
@@ -113,6 +114,14 @@ heel_def(const struct behave *b, const struct state *s, int side, struct ik_cons
 	d->goal_xf.p[2] = s->site_xf[b->s_heel[side]].p[2];
 	d->weight = 10 * W_FOOT; /* metres against the radians of the torso: heels stay down */
 	d->enabled = b->p.heel[side] == HEEL_KEEP_ON_FLOOR;
+	if (b->p.seated) { /* the heel's whole frame where it is: pivot and heel rules rest */
+		d->pos = IK_POINT;
+		d->ori = IK_FRAME;
+		d->pos_weight = 0.5;
+		d->weight = W_FOOT;
+		d->goal_xf = s->site_xf[b->s_heel[side]];
+		d->enabled = 1;
+	}
 }
 
 static void
@@ -347,7 +356,10 @@ behave_set_params(struct behave *b, const struct model *m, struct state *s, stru
 	if (p->hold_elevation && d.pos != IK_POINT)
 		b->elevation = s->com[1];
 	balance_goal(b, &d);
+	d.enabled = !p->seated; /* the seat bears the weight */
 	ik_set(ik, m, b->c_balance, &d);
+	if (p->seated)
+		set_root(b, m, s, ik, BALANCE_ROOT_LOWER_TORSO);
 	stance_limit_springs(ik, m, p->spring_angle, STANCE_SPRING_WEIGHT);
 	if (p->root_through_com)
 		memcpy(b->com_fixed, s->com, sizeof b->com_fixed);
@@ -467,7 +479,7 @@ behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik
 {
 	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
 	/* automatic rooting (§5.4.2.4), never in the middle of a step */
-	if (b->p.auto_root && !b->step.active && !b->p.root_through_com) {
+	if (b->p.auto_root && !b->step.active && !b->p.root_through_com && !b->p.seated) {
 		double com_h = s->com[1];
 		set_root(b, m, s, ik, balance_choose_root(&b->bal, com_h, b->leg_length, b->root));
 	}
@@ -542,14 +554,24 @@ behave_move_foot(struct behave *b, const struct model *m, struct state *s, struc
 	if (b->root != BALANCE_ROOT_LOWER_TORSO)
 		set_root(b, m, s, ik, other);
 	struct xform g = *goal;
-	if (b->p.foot_follows_line)
+	if (b->p.foot_follows_line && !b->p.seated)
 		follow_balance_line(b, m, s, side, &g);
 	behave_set_foot_goal(b, ik, side, &g);
+}
+
+int
+behave_foot_site(const struct behave *b, int side)
+{
+	return b->p.seated ? b->s_heel[side] : b->s_toe[side];
 }
 
 void
 behave_set_foot_goal(struct behave *b, struct ik *ik, int side, const struct xform *goal)
 {
+	if (b->p.seated) {
+		ik_set_goal(ik, b->c_heel[side], goal);
+		return;
+	}
 	ik_set_goal(ik, b->c_toe[side], goal);
 	struct ik_constraint_def d = *ik_get(ik, b->c_heel[side]);
 	d.goal_xf.p[0] = goal->p[0], d.goal_xf.p[2] = goal->p[2];
@@ -792,6 +814,7 @@ behave_pack(const struct behave *b, double *dest, int max)
 	PACK_PUT(p->step_frames);
 	PACK_PUT(p->foot_follows_line);
 	PACK_PUT(p->hands_laban);
+	PACK_PUT(p->seated);
 	PACK_PUT(p->stability_threshold);
 	PACK_PUT(b->leg_length);
 	PACK_PUT(b->bal_x);
@@ -856,6 +879,7 @@ behave_unpack(struct behave *b, const struct model *m, const double *v, int nv)
 	p->step_frames = (int)PACK_GET();
 	p->foot_follows_line = (int)PACK_GET();
 	p->hands_laban = (int)PACK_GET();
+	p->seated = (int)PACK_GET();
 	p->stability_threshold = PACK_GET();
 	fresh.leg_length = PACK_GET();
 	fresh.bal_x = PACK_GET();

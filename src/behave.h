@@ -56,6 +56,8 @@ struct behave_params {
 	enum heel_behavior heel[2];
 	int foot_follows_line;    /* a moved foot keeps its angle to the balance line (§D.2.2) */
 	int hands_laban;          /* a moved hand takes Labanotation's palm orientation (§D.2.4) */
+	int seated;               /* rooted at the lower torso; the heels, not the toes, hold the
+				   * feet, and balance and stepping rest (§D.1.1) */
 	int hold_elevation;       /* the centre of mass keeps its height (§D.1.2) */
 	enum torso_behavior torso;
 	int fixate_head, fixate_eyes;
@@ -160,7 +162,10 @@ void behave_set_params(struct behave *b, const struct model *m, struct state *s,
 /* the foot's toes to a frame on the floor; the support moves to the other foot */
 void behave_move_foot(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
 		      int side, const struct xform *goal);
-/* the foot's toes (and its heel's place on the floor) to goal; the support stays as it is */
+/* the site that holds a foot: the toes standing, the heel seated (§D.1.1) */
+int behave_foot_site(const struct behave *b, int side);
+/* the foot's holding site to goal (standing: the toes, and the heel's place on the
+ * floor; seated: the heel's whole frame); the support stays as it is */
 void behave_set_foot_goal(struct behave *b, struct ik *ik, int side, const struct xform *goal);
 /* the balance point by (dx, dz) on the floor and the centre of mass up by dy (0: free) */
 void behave_move_com(struct behave *b, const struct model *m, struct state *s, struct ik *ik,

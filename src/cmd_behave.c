@@ -133,7 +133,7 @@ choice(struct cmd_ctx *c, const char *key, const char *a, const char *b, int va,
 static const char *const behavior_keys[] = {
 	"foot", "foot_l", "foot_r", "heel", "heel_l", "heel_r", "elevation", "torso", "head", "eyes",
 	"hands", "hand_l", "hand_r", "follow_feet", "pelvis_follows", "auto_root", "com_root",
-	"step", "twist_step", "foot_orient", "hand_orient", "stability"
+	"step", "twist_step", "foot_orient", "hand_orient", "stability", "seated"
 };
 
 int
@@ -193,7 +193,7 @@ cmd_set_behavior(struct cmd_ctx *c)
 	    on_off(c, "pelvis_follows", &p.pelvis_follows_feet) < 0 ||
 	    on_off(c, "auto_root", &p.auto_root) < 0 || on_off(c, "com_root", &p.root_through_com) < 0 ||
 	    on_off(c, "step", &p.step_when_losing_balance) < 0 ||
-	    on_off(c, "twist_step", &p.step_when_twisted) < 0)
+	    on_off(c, "twist_step", &p.step_when_twisted) < 0 || on_off(c, "seated", &p.seated) < 0)
 		return -1;
 	env_sync_solver(&c->d->env, fig);
 	behave_set_params(b, f->model, f->state, f->ik, &p);
@@ -235,6 +235,7 @@ cmd_get_behavior(struct cmd_ctx *c)
 	json_object_set_new(p, "twist_step", json_boolean(b->p.step_when_twisted));
 	json_object_set_new(p, "foot_orient", json_string(b->p.foot_follows_line ? "line" : "global"));
 	json_object_set_new(p, "hand_orient", json_string(b->p.hands_laban ? "laban" : "global"));
+	json_object_set_new(p, "seated", json_boolean(b->p.seated));
 	json_object_set_new(p, "stability", json_real(b->p.stability_threshold));
 	json_object_set_new(bal, "x", json_real(b->bal.x));
 	json_object_set_new(bal, "z", json_real(b->bal.z));
@@ -287,7 +288,7 @@ cmd_move_foot(struct cmd_ctx *c)
 	const char *y = cmd_key(c, "yaw");
 	if ((c->argc == 4 && !y) || (y && words_number(y, UNIT_ANGLE, &yaw) < 0))
 		return cmd_fail(c, "bad-argument", "yaw=ANGLE");
-	struct xform g = f->state->site_xf[b->s_toe[side]];
+	struct xform g = f->state->site_xf[behave_foot_site(b, side)];
 	memcpy(g.p, p, sizeof p);
 	if (y) { /* turned about the vertical */
 		double q[4], r[9], t[9], axis[3] = { 0, 1, 0 };

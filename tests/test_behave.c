@@ -406,6 +406,55 @@ test_hands_maintain_consistent_orientation(void **unused)
 	rig_free(&r);
 }
 
+/* §D.1.1: seated, the heel holds the foot (position and orientation); balance rests */
+static void
+test_seated_heels_hold_the_feet(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	frames(&r, 3);
+	struct behave_params p = r.b.p;
+	p.seated = 1;
+	behave_set_params(&r.b, r.m, r.s, r.ik, &p);
+	assert_int_equal(r.b.root, BALANCE_ROOT_LOWER_TORSO);
+	assert_int_equal(behave_foot_site(&r.b, 1), r.b.s_heel[1]);
+	struct xform pelvis0 = r.s->site_xf[r.b.s_lower];
+	/* the right heel 10 cm forward, 5 cm up, turned 15 degrees out */
+	struct xform goal = r.s->site_xf[r.b.s_heel[1]];
+	double q[4], turn[9], axis[3] = { 0, 1, 0 }, t[9];
+	mathx_quat_axis_angle(axis, -15 * DEG, q);
+	mathx_quat_to_mat(q, turn);
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			t[3 * i + j] = turn[3 * i] * goal.r[j] + turn[3 * i + 1] * goal.r[3 + j] +
+				       turn[3 * i + 2] * goal.r[6 + j];
+	memcpy(goal.r, t, sizeof t);
+	goal.p[2] += 0.10;
+	goal.p[1] += 0.05;
+	behave_move_foot(&r.b, r.m, r.s, r.ik, BEHAVE_RIGHT, &goal);
+	frames(&r, 40);
+	const struct xform *heel = &r.s->site_xf[r.b.s_heel[1]];
+	for (int i = 0; i < 3; i++)
+		assert_near(heel->p[i], goal.p[i], 1e-3);
+	double tr = 0; /* the angle between the heel's frame and the goal's */
+	for (int i = 0; i < 3; i++)
+		for (int k = 0; k < 3; k++)
+			tr += heel->r[3 * k + i] * goal.r[3 * k + i];
+	printf("seated: heel %.2f mm, %.2f deg from its goal\n",
+	       1e3 * sqrt(pow(heel->p[0] - goal.p[0], 2) + pow(heel->p[1] - goal.p[1], 2) +
+			  pow(heel->p[2] - goal.p[2], 2)),
+	       acos(fmin(1, (tr - 1) / 2)) / DEG);
+	assert_true(acos(fmin(1, (tr - 1) / 2)) < 1 * DEG);
+	/* the root stayed; the other foot stayed */
+	for (int i = 0; i < 3; i++)
+		assert_near(r.s->site_xf[r.b.s_lower].p[i], pelvis0.p[i], 1e-9);
+	assert_false(ik_get(r.ik, r.b.c_balance)->enabled);
+	assert_false(ik_get(r.ik, r.b.c_toe[1])->enabled);
+	assert_int_equal(r.b.steps_taken, 0);
+	rig_free(&r);
+}
+
 /* Figure 5.7: bending forward 45 degrees shifts the hips back, balanced, feet planted */
 static void
 test_fig_5_7_bend_torso_keeps_balance(void **unused)
@@ -572,6 +621,7 @@ main(void)
 		cmocka_unit_test(test_foot_orientation_follows_balance_line),
 		cmocka_unit_test(test_stability_alert_edges),
 		cmocka_unit_test(test_hands_maintain_consistent_orientation),
+		cmocka_unit_test(test_seated_heels_hold_the_feet),
 		cmocka_unit_test(test_fig_5_7_bend_torso_keeps_balance),
 		cmocka_unit_test(test_hands_on_hips_survive_a_bend),
 		cmocka_unit_test(test_fig_5_8_rotate_pelvis_keeps_chest_vertical),

@@ -405,3 +405,24 @@ def test_fig_5_9_5_10_a_hand_moves_while_head_and_eyes_stay_fixated(daemon):
             off = (sigma * 0.07, 0.06, 0.0)
             want = [hip[i] + sum(rot[i][k] * off[k] for k in range(3)) for i in range(3)]
             assert math.dist(site(c, f"jack hand_{s}.palm")[0], want) < 5e-3, s
+
+
+def test_seated_a_heel_holding_a_pedal_follows_it(daemon_factory):
+    """§D.1.1 seated: the heel holds the foot, and with hold local location on an object
+    (here a box standing in for a pedal) the heel follows it as it moves (±1 mm); the
+    lower torso stays the root and does not move."""
+    with daemon_factory(extra=LIBRARY).client() as c:
+        behaving_jack(c)
+        c.request("set behavior jack seated=on")
+        assert c.request("get behavior jack")["root"] == "lower torso"
+        c.request("load figure lib:box.fig as pedal")
+        c.request("set location pedal -0.1 0 0.4")
+        c.request("hold foot jack right pedal")
+        heel0 = site(c, "jack foot_r.heel")[0]
+        hips0 = site(c, "jack pelvis.lower_torso")[0]
+        c.request("set location pedal -0.1 0.04 0.46")  # up 4 cm, forward 6 cm
+        settled(c)
+        want = (heel0[0], heel0[1] + 0.04, heel0[2] + 0.06)
+        assert near(site(c, "jack foot_r.heel")[0], want, 1e-3)
+        assert near(site(c, "jack pelvis.lower_torso")[0], hips0, 1e-9)
+        assert c.request("get behavior jack")["parameters"]["seated"] is True
