@@ -1,5 +1,6 @@
 /* cmd_behave.c - behaviours through the protocol: switching, parameters, primitives */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -332,8 +333,27 @@ cmd_bend_torso(struct cmd_ctx *c)
 			return cmd_fail(c, "bad-number", "FORWARD LATERAL AXIAL: angles");
 	struct spine_flavor fl = spine_bend_from_waist();
 	const char *name = cmd_key(c, "flavor");
-	if ((c->argc == 5 && !name) || (name && spine_flavor_named(name, &fl) < 0))
+	if (name && spine_flavor_named(name, &fl) < 0)
 		return cmd_fail(c, "bad-argument", "flavor=waist|neck");
+	/* or the flavour's joints one by one (§5.5.3): spine_0 (L5/S1) .. spine_17 (the neck) */
+	static const char *const ends[] = { "bottom", "top", "initiator", "resistor" };
+	int *field[] = { &fl.bottom, &fl.top, &fl.initiator, &fl.resistor };
+	for (int i = 4; i < c->argc; i++) {
+		int known = words_is_key(c->argv[i], "flavor");
+		for (int k = 0; k < 4; k++)
+			known |= words_is_key(c->argv[i], ends[k]);
+		if (!known)
+			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
+	}
+	for (int k = 0; k < 4; k++) {
+		const char *v = cmd_key(c, ends[k]);
+		int j, used = 0;
+		if (!v)
+			continue;
+		if (sscanf(v, "spine_%d%n", &j, &used) != 1 || v[used] || j < 0 || j >= SPINE_NJNT)
+			return cmd_fail(c, "bad-argument", "%s=spine_0..spine_%d", ends[k], SPINE_NJNT - 1);
+		*field[k] = j;
+	}
 	double shortfall[3];
 	if (spine_distribute(f->model, &fl, total, (double[SPINE_NDOF]){ 0 }, shortfall) < 0 ||
 	    behave_bend_torso(b, f->model, f->state, f->ik, total, &fl) < 0)

@@ -452,6 +452,7 @@ test_seated_heels_hold_the_feet(void **unused)
 	assert_false(ik_get(r.ik, r.b.c_balance)->enabled);
 	assert_false(ik_get(r.ik, r.b.c_toe[1])->enabled);
 	assert_int_equal(r.b.steps_taken, 0);
+	snapshot(&r, "seated-heel-moved", FRONT);
 	rig_free(&r);
 }
 
