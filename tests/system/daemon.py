@@ -199,18 +199,24 @@ def daemon(daemon_factory):
 
 
 def snapshot(client):
-    """The observable state: figures, constraints and every figure's posture.
+    """The observable state: figures, constraints, every figure's posture, and the
+    behaviours of the figures that behave.
 
-    Returns {"figures": [...], "constraints": [...], "postures": {figure id: {...}}}
-    exactly as the daemon reports them (floats are compared bit for bit).
+    Returns {"figures": [...], "constraints": [...], "postures": {figure id: {...}},
+    "behaviours": {figure id: {...}}} exactly as the daemon reports them (floats are
+    compared bit for bit).
     """
     figures = client.request("list figures")["figures"]
     constraints = client.request("list constraints")["constraints"]
-    postures = {}
+    postures, behaviours = {}, {}
     for fig in figures:
         fid = fig["figure"]
         postures[fid] = client.request(f"get posture {fid}")["posture"]
-    return {"figures": figures, "constraints": constraints, "postures": postures}
+        reply = client.request_reply(f"get behavior {fid}")
+        if reply["ok"]:
+            behaviours[fid] = reply["result"]
+    return {"figures": figures, "constraints": constraints, "postures": postures,
+            "behaviours": behaviours}
 
 
 def wait_closed(client, timeout=5.0):

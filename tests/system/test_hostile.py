@@ -122,6 +122,22 @@ CASES = [
     line("load human as jack", "exists"),
     line("add constraint jack effector=hand_l.palm as hold", "exists"),
     line("redo", "nothing"),
+    # ---- behaviours (jack behaves, jill does not)
+    line("grab jack right nobody", "not-found"),
+    line("grab jack right jack", "bad-argument"),
+    line("grab jill right jack", "bad-argument", name="grab by a figure that does not behave"),
+    line("hold hand jack left jill.nosegment", "not-found"),
+    line("hold foot jack sideways jill", "bad-argument"),
+    line("release hand jack middle", "bad-argument"),
+    line("set behavior jack stability=nan", "bad-number"),
+    line("set behavior jack stability=5", "bad-number"),
+    line("set behavior jack seated=perhaps torso=free", "bad-argument",
+         name="one bad key among good ones"),
+    line("set behavior jill foot=pivot", "bad-argument", name="behaviours off"),
+    line("bend torso jack 10deg 0 0 initiator=spine_99", "bad-argument"),
+    line("bend torso jack 10deg 0 0 bottom=spine_9 top=spine_3", "bad-argument"),
+    line("move com jack nan 0", "bad-number"),
+    line("move foot jack left 1,2", "bad-number"),
     # ---- files and paths
     line("load posture jack missing.pst", "not-found"),
     line("save posture jack {OUT}/abs.pst", "denied", absent=("outside/abs.pst",)),
@@ -203,6 +219,7 @@ def env():
         c.request("load human as jill sex=female stature=1.62")
         c.request("set joint jill knee_r 20deg")
         c.request("set joint jack elbow_l 0.5")
+        c.request("behave jack on")
         c.request("settle")
         c.request("disable constraint reach")
         c.request("save posture jack good.pst")
