@@ -36,34 +36,6 @@ behave_default_params(void)
 	return p;
 }
 
-static void
-rot_y(double angle, double dest[9])
-{
-	double c = cos(angle), s = sin(angle);
-	double r[9] = { c, 0, s, 0, 1, 0, -s, 0, c };
-	memcpy(dest, r, sizeof r);
-}
-
-static void
-mat_mul3(const double a[9], const double b[9], double dest[9])
-{
-	double t[9];
-	for (int i = 0; i < 3; i++)
-		for (int j = 0; j < 3; j++)
-			t[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
-	memcpy(dest, t, sizeof t);
-}
-
-static void
-mat_tmul3(const double a[9], const double b[9], double dest[9])
-{
-	double at[9];
-	for (int i = 0; i < 3; i++)
-		for (int j = 0; j < 3; j++)
-			at[3 * i + j] = a[3 * j + i];
-	mat_mul3(at, b, dest);
-}
-
 /* the heading of a foot: from its heel to its toe tip, about the vertical */
 static double
 foot_heading(const struct behave *b, const struct state *s, int side)
@@ -305,8 +277,8 @@ behave_attach(struct behave *b, const struct model *m, struct state *s, struct i
 	b->c_balance = ik_add(ik, m, &d);
 	/* the pelvis: its orientation relative to the feet's heading */
 	double head[9];
-	rot_y(feet_heading(b, s), head);
-	mat_tmul3(head, s->site_xf[b->s_pelvis].r, b->pelvis_turn);
+	mathx_rot_y(feet_heading(b, s), head);
+	mathx_mat3_tmul(head, s->site_xf[b->s_pelvis].r, b->pelvis_turn);
 	d = ik_constraint_default_def();
 	d.effector_site = b->s_pelvis;
 	d.pos = IK_POS_NONE;
@@ -464,10 +436,10 @@ twist_trigger(struct behave *b, struct state *s, struct ik *ik)
 	const double *pivot = s->site_xf[b->s_toe[1 - side]].p;
 	struct xform to = s->site_xf[b->s_toe[side]];
 	double turn[9], rel[3] = { to.p[0] - pivot[0], 0, to.p[2] - pivot[2] };
-	rot_y(twist, turn);
+	mathx_rot_y(twist, turn);
 	to.p[0] = pivot[0] + turn[0] * rel[0] + turn[2] * rel[2];
 	to.p[2] = pivot[2] + turn[6] * rel[0] + turn[8] * rel[2];
-	mat_mul3(turn, to.r, to.r);
+	mathx_mat3_mul(turn, to.r, to.r);
 	step_start(b, s, ik, side, &to);
 }
 
@@ -501,8 +473,8 @@ behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik
 		struct xform g;
 		double head[9];
 		xform_identity(&g);
-		rot_y(feet_heading(b, s), head);
-		mat_mul3(head, b->pelvis_turn, g.r);
+		mathx_rot_y(feet_heading(b, s), head);
+		mathx_mat3_mul(head, b->pelvis_turn, g.r);
 		ik_set_goal(ik, b->c_pelvis, &g);
 	}
 	struct ik_result r = ik_solve(ik, m, s, opt, clock);
@@ -541,8 +513,8 @@ follow_balance_line(struct behave *b, const struct model *m, struct state *s, in
 	if (hypot(then[0], then[1]) < 1e-6 || hypot(now[0], now[1]) < 1e-6)
 		return;
 	double turn[9];
-	rot_y(atan2(then[0], then[1]) - atan2(now[0], now[1]), turn);
-	mat_mul3(turn, g->r, g->r);
+	mathx_rot_y(atan2(then[0], then[1]) - atan2(now[0], now[1]), turn);
+	mathx_mat3_mul(turn, g->r, g->r);
 }
 
 void
@@ -617,7 +589,7 @@ behave_rotate_pelvis(struct behave *b, const struct model *m, struct state *s, s
 	(void)m;
 	(void)s;
 	(void)ik;
-	mat_mul3(r, b->pelvis_turn, b->pelvis_turn);
+	mathx_mat3_mul(r, b->pelvis_turn, b->pelvis_turn);
 }
 
 void

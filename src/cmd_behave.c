@@ -292,13 +292,9 @@ cmd_move_foot(struct cmd_ctx *c)
 	struct xform g = f->state->site_xf[behave_foot_site(b, side)];
 	memcpy(g.p, p, sizeof p);
 	if (y) { /* turned about the vertical */
-		double q[4], r[9], t[9], axis[3] = { 0, 1, 0 };
-		mathx_quat_axis_angle(axis, yaw, q);
-		mathx_quat_to_mat(q, r);
-		for (int i = 0; i < 3; i++)
-			for (int j = 0; j < 3; j++)
-				t[3 * i + j] = r[3 * i] * g.r[j] + r[3 * i + 1] * g.r[3 + j] + r[3 * i + 2] * g.r[6 + j];
-		memcpy(g.r, t, sizeof t);
+		double r[9];
+		mathx_rot_y(yaw, r);
+		mathx_mat3_mul(r, g.r, g.r);
 	}
 	drop_local_hold(c, f, ATTACH_FOOT, side);
 	behave_move_foot(b, f->model, f->state, f->ik, side, &g);

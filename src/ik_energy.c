@@ -61,7 +61,6 @@ norm3(const double v[3])
 	return sqrt(mathx_dot(v, v));
 }
 
-static void mat_mul(const double a[9], const double b[9], double dest[9]);
 static void perpendicular(const double v[3], double dest[3]);
 
 /*
@@ -126,7 +125,7 @@ con_residual(struct ik_con *c, const struct xform *E, const struct xform *Gp,
 		for (int i = 0; i < 3; i++)
 			for (int j = 0; j < 3; j++)
 				et[3 * i + j] = E->r[3 * j + i];
-		mat_mul(Go->r, et, rel);
+		mathx_mat3_mul(Go->r, et, rel);
 		mathx_mat_to_quat(rel, q);
 		double sn = norm3(q), angle = 2 * atan2(sn, q[3]);
 		double scale = sn > 1e-12 ? angle / sn : 2; /* 2 q_v as the angle vanishes */
@@ -383,14 +382,6 @@ axis_rotation(const double axis[3], double angle, double dest[9])
 	mathx_quat_to_mat(q, dest);
 }
 
-static void
-mat_mul(const double a[9], const double b[9], double dest[9])
-{
-	for (int i = 0; i < 3; i++)
-		for (int j = 0; j < 3; j++)
-			dest[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
-}
-
 /* any unit vector perpendicular to v */
 static void
 perpendicular(const double v[3], double dest[3])
@@ -469,14 +460,14 @@ step_orientation(const struct ik_constraint_def *d, const struct xform *E, struc
 		for (int i = 0; i < 3; i++)
 			for (int j = 0; j < 3; j++)
 				et[3 * i + j] = E->r[3 * j + i];
-		mat_mul(et, G->r, rel);
+		mathx_mat3_mul(et, G->r, rel);
 		mathx_mat_to_quat(rel, q);
 		double sn = norm3(q), angle = 2 * atan2(sn, q[3]);
 		if (angle <= step || sn < 1e-15)
 			return 0;
 		double axis[3] = { q[0] / sn, q[1] / sn, q[2] / sn }, part[9];
 		axis_rotation(axis, step, part);
-		mat_mul(E->r, part, G->r);
+		mathx_mat3_mul(E->r, part, G->r);
 		return 1;
 	}
 	case IK_DIRECTION: {
@@ -490,7 +481,7 @@ step_orientation(const struct ik_constraint_def *d, const struct xform *E, struc
 			return 0;
 		turn_axis(v, u, axis);
 		axis_rotation(axis, angle - step, turn);
-		mat_mul(turn, G->r, r);
+		mathx_mat3_mul(turn, G->r, r);
 		memcpy(G->r, r, sizeof r);
 		return 1;
 	}

@@ -204,6 +204,39 @@ mathx_dot(const double a[3], const double b[3])
 	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* dest = a b for 3x3 row-major matrices; dest may be a or b */
+static inline void
+mathx_mat3_mul(const double a[9], const double b[9], double dest[9])
+{
+	double t[9];
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			t[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
+	for (int i = 0; i < 9; i++)
+		dest[i] = t[i];
+}
+
+/* dest = a^T b; dest may be a or b */
+static inline void
+mathx_mat3_tmul(const double a[9], const double b[9], double dest[9])
+{
+	double at[9];
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			at[3 * i + j] = a[3 * j + i];
+	mathx_mat3_mul(at, b, dest);
+}
+
+/* rotation by angle (radians) about +y, the vertical: +z turns toward +x */
+static inline void
+mathx_rot_y(double angle, double dest[9])
+{
+	double c = cos(angle), s = sin(angle);
+	const double r[9] = { c, 0, s, 0, 1, 0, -s, 0, c };
+	for (int i = 0; i < 9; i++)
+		dest[i] = r[i];
+}
+
 /* rotation angle (radians, 0..pi) between two rotation matrices */
 static inline double
 mathx_rot_angle_between(const double a[9], const double b[9])

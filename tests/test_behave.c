@@ -422,14 +422,9 @@ test_seated_heels_hold_the_feet(void **unused)
 	struct xform pelvis0 = r.s->site_xf[r.b.s_lower];
 	/* the right heel 10 cm forward, 5 cm up, turned 15 degrees out */
 	struct xform goal = r.s->site_xf[r.b.s_heel[1]];
-	double q[4], turn[9], axis[3] = { 0, 1, 0 }, t[9];
-	mathx_quat_axis_angle(axis, -15 * DEG, q);
-	mathx_quat_to_mat(q, turn);
-	for (int i = 0; i < 3; i++)
-		for (int j = 0; j < 3; j++)
-			t[3 * i + j] = turn[3 * i] * goal.r[j] + turn[3 * i + 1] * goal.r[3 + j] +
-				       turn[3 * i + 2] * goal.r[6 + j];
-	memcpy(goal.r, t, sizeof t);
+	double turn[9];
+	mathx_rot_y(-15 * DEG, turn);
+	mathx_mat3_mul(turn, goal.r, goal.r);
 	goal.p[2] += 0.10;
 	goal.p[1] += 0.05;
 	behave_move_foot(&r.b, r.m, r.s, r.ik, BEHAVE_RIGHT, &goal);
