@@ -238,6 +238,16 @@ resolve_error(struct cmd_ctx *c, int err, const char *what, const char *ref)
 }
 
 int
+cmd_side(struct cmd_ctx *c, const char *w)
+{
+	if (!strcmp(w, "left"))
+		return 0;
+	if (!strcmp(w, "right"))
+		return 1;
+	return cmd_fail(c, "bad-argument", "left or right, not '%.20s'", w);
+}
+
+int
 cmd_figure(struct cmd_ctx *c, const char *ref)
 {
 	int slot = env_find_figure(&c->d->env, ref);

@@ -58,6 +58,7 @@ void cmd_print_table(FILE *f);
 /* shared argument helpers for handlers */
 int cmd_figure(struct cmd_ctx *c, const char *ref);       /* slot or -1 with the error set */
 int cmd_constraint(struct cmd_ctx *c, const char *ref);   /* slot or -1 */
+int cmd_side(struct cmd_ctx *c, const char *w);          /* left 0, right 1, or -1 */
 const char *cmd_key(struct cmd_ctx *c, const char *key);  /* "key=value" among the args */
 /* path inside the state directory: 0 with the full path in dest, or -1 with the error set */
 int cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len);

@@ -4,22 +4,11 @@
 #include "attach.h"
 #include "cmd.h"
 
-/* "left" or "right": the side, or -1 with the error set */
-static int
-side_word(struct cmd_ctx *c, const char *w)
-{
-	if (!strcmp(w, "left"))
-		return 0;
-	if (!strcmp(w, "right"))
-		return 1;
-	return cmd_fail(c, "bad-argument", "left or right, not '%.20s'", w);
-}
-
 int
 cmd_grab(struct cmd_ctx *c)
 {
 	int fig = cmd_figure(c, c->argv[0]), side, obj;
-	if (fig < 0 || (side = side_word(c, c->argv[1])) < 0 || (obj = cmd_figure(c, c->argv[2])) < 0)
+	if (fig < 0 || (side = cmd_side(c, c->argv[1])) < 0 || (obj = cmd_figure(c, c->argv[2])) < 0)
 		return -1;
 	struct env *e = &c->d->env;
 	char err[200];
@@ -51,7 +40,7 @@ static int
 hold(struct cmd_ctx *c, enum attach_limb limb)
 {
 	int fig = cmd_figure(c, c->argv[0]), side, obj, seg;
-	if (fig < 0 || (side = side_word(c, c->argv[1])) < 0 ||
+	if (fig < 0 || (side = cmd_side(c, c->argv[1])) < 0 ||
 	    (obj = object_segment(c, c->argv[2], &seg)) < 0)
 		return -1;
 	struct env *e = &c->d->env;
@@ -78,7 +67,7 @@ static int
 release(struct cmd_ctx *c, enum attach_limb limb)
 {
 	int fig = cmd_figure(c, c->argv[0]), side;
-	if (fig < 0 || (side = side_word(c, c->argv[1])) < 0)
+	if (fig < 0 || (side = cmd_side(c, c->argv[1])) < 0)
 		return -1;
 	json_object_set_new(c->result, "released",
 			    json_boolean(attach_release(&c->d->env, fig, limb, side)));

@@ -21,16 +21,6 @@ behaving(struct cmd_ctx *c, const char *ref)
 	return fig;
 }
 
-static int
-side_of(struct cmd_ctx *c, const char *w)
-{
-	if (!strcmp(w, "left"))
-		return BEHAVE_LEFT;
-	if (!strcmp(w, "right"))
-		return BEHAVE_RIGHT;
-	return cmd_fail(c, "bad-argument", "left or right, not '%.20s'", w);
-}
-
 int
 cmd_behave(struct cmd_ctx *c)
 {
@@ -282,7 +272,7 @@ cmd_move_foot(struct cmd_ctx *c)
 	struct behave *b = primitive(c, &f);
 	int side;
 	double p[3], yaw = 0;
-	if (!b || (side = side_of(c, c->argv[1])) < 0)
+	if (!b || (side = cmd_side(c, c->argv[1])) < 0)
 		return -1;
 	if (words_list(c->argv[2], UNIT_LENGTH, 3, p) < 0)
 		return cmd_fail(c, "bad-number", "X,Y,Z: three lengths");
@@ -381,7 +371,7 @@ cmd_move_hand(struct cmd_ctx *c)
 	int side;
 	double p[3], r[9];
 	int turned;
-	if (!b || (side = side_of(c, c->argv[1])) < 0)
+	if (!b || (side = cmd_side(c, c->argv[1])) < 0)
 		return -1;
 	if (words_list(c->argv[2], UNIT_LENGTH, 3, p) < 0)
 		return cmd_fail(c, "bad-number", "X,Y,Z: three lengths");

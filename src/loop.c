@@ -453,11 +453,7 @@ frame_event(struct loop *L, const char *view, const struct frame *f)
 	struct scene *sc = &L->scene;
 	if (sink_png_encode(&sc->enc, f, err, sizeof err) < 0)
 		return;
-	struct jbuf *j = &L->ev;
-	jbuf_reset(j);
-	jbuf_raw(j, "{\"event\":\"frame\"");
-	jbuf_key(j, "frame", 0);
-	jbuf_int(j, (long long)L->d.stats.frame);
+	struct jbuf *j = event_begin(L, "frame", NULL);
 	jbuf_key(j, "view", 0);
 	jbuf_str(j, view);
 	jbuf_key(j, "width", 0);
