@@ -159,3 +159,24 @@ demo_scene_icons(struct drawlist *dl, const struct demo_scene *sc, int frame)
 			"left: x   middle: y   right: z   CONTROL rotates, SHIFT local axes", 1);
 	view_add_pointer(dl, dl->width * 0.62, dl->height * 0.38);
 }
+
+void
+demo_scene_camera(const struct demo_scene *sc, struct camera *cam)
+{
+	double eye[3] = { -1.45, 1.35, 2.3 }, target[3] = { -0.05, 0.86, 0 };
+	double seye[3] = { -2.1, 1.6, 1.9 }, starget[3] = { 0, 0.6, 0.3 };
+	view_camera_default(cam);
+	view_camera_aim(cam, sc->seated ? seye : eye, sc->seated ? starget : target);
+}
+
+void
+demo_scene_draw(struct drawlist *dl, const struct demo_scene *sc, const struct camera *cam, int w,
+		int h, const int base[2], int icons)
+{
+	view_begin(dl, cam, w, h);
+	view_add_figure(dl, sc->human, sc->hs, base[0]);
+	if (sc->seat)
+		view_add_figure(dl, sc->seat, sc->ss, base[1]);
+	if (icons)
+		demo_scene_icons(dl, sc, icons == 1);
+}

@@ -40,4 +40,15 @@ struct drawlist;
  */
 void demo_scene_icons(struct drawlist *dl, const struct demo_scene *sc, int frame);
 
+struct camera;
+/* the scene's camera: a front three-quarter view, or the driver from the front left */
+void demo_scene_camera(const struct demo_scene *sc, struct camera *cam);
+
+/*
+ * The scene's draw list for cam at w x h (base: the figures' mesh bases):
+ * icons 0 none, 1 every icon, 2 every icon but the manipulation frame.
+ */
+void demo_scene_draw(struct drawlist *dl, const struct demo_scene *sc, const struct camera *cam,
+		     int w, int h, const int base[2], int icons);
+
 #endif

@@ -74,30 +74,6 @@ realloc(void *p, size_t n)
 
 #define DEG (M_PI / 180)
 
-
-/* the scene's camera: a front three-quarter view, or the driver from the front left */
-static void
-scene_camera(const struct demo_scene *sc, struct camera *cam)
-{
-	double eye[3] = { -1.45, 1.35, 2.3 }, target[3] = { -0.05, 0.86, 0 };
-	double seye[3] = { -2.1, 1.6, 1.9 }, starget[3] = { 0, 0.6, 0.3 };
-	view_camera_default(cam);
-	view_camera_aim(cam, sc->seated ? seye : eye, sc->seated ? starget : target);
-}
-
-static void
-build(struct drawlist *dl, const struct demo_scene *sc, const struct camera *cam, int w, int h,
-      const int base[2], int icons)
-{
-	view_begin(dl, cam, w, h);
-	view_add_figure(dl, sc->human, sc->hs, base[0]);
-	if (sc->seat)
-		view_add_figure(dl, sc->seat, sc->ss, base[1]);
-	if (icons)
-		demo_scene_icons(dl, sc, icons == 1);
-}
-
-
 /* ---- pictures ------------------------------------------------------------ */
 
 struct rig {
@@ -128,7 +104,7 @@ rig_make(struct rig *g, const char *scene)
 		g->base[1] = render_add_model(g->r, g->sc.seat, err, sizeof err);
 		assert_true(g->base[1] >= 0);
 	}
-	scene_camera(&g->sc, &g->cam);
+	demo_scene_camera(&g->sc, &g->cam);
 }
 
 static void
@@ -144,7 +120,7 @@ static uint8_t *
 shoot(struct rig *g, int icons)
 {
 	struct frame f;
-	build(g->dl, &g->sc, &g->cam, W, H, g->base, icons);
+	demo_scene_draw(g->dl, &g->sc, &g->cam, W, H, g->base, icons);
 	assert_int_equal(g->dl->dropped, 0);
 	assert_int_equal(render_frame(g->r, g->dl, 0, &f), 0);
 	assert_int_equal(f.width, W);
@@ -414,13 +390,13 @@ test_frame_no_alloc(void **unused)
 	rig_make(&g, "seated");
 	struct frame f;
 	for (int i = 0; i < 5; i++) {
-		build(g.dl, &g.sc, &g.cam, W, H, g.base, 1);
+		demo_scene_draw(g.dl, &g.sc, &g.cam, W, H, g.base, 1);
 		render_frame(g.r, g.dl, 0, &f);
 	}
 #if COUNT_ALLOCS
 	long before = allocs;
 	for (int i = 0; i < 20; i++)
-		build(g.dl, &g.sc, &g.cam, W, H, g.base, 1);
+		demo_scene_draw(g.dl, &g.sc, &g.cam, W, H, g.base, 1);
 	assert_int_equal(allocs - before, 0);
 	/*
 	 * render.c allocates nothing in render_frame; llvmpipe's binner takes

@@ -39,29 +39,6 @@ static const char usage[] =
 
 #define DEG (M_PI / 180)
 
-
-/* the scene's camera: a front three-quarter view, or the driver from the front left */
-static void
-scene_camera(const struct demo_scene *sc, struct camera *cam)
-{
-	double eye[3] = { -1.45, 1.35, 2.3 }, target[3] = { -0.05, 0.86, 0 };
-	double seye[3] = { -2.1, 1.6, 1.9 }, starget[3] = { 0, 0.6, 0.3 };
-	view_camera_default(cam);
-	view_camera_aim(cam, sc->seated ? seye : eye, sc->seated ? starget : target);
-}
-
-static void
-build(struct drawlist *dl, const struct demo_scene *sc, const struct camera *cam, int w, int h,
-      const int base[2], int icons)
-{
-	view_begin(dl, cam, w, h);
-	view_add_figure(dl, sc->human, sc->hs, base[0]);
-	if (sc->seat)
-		view_add_figure(dl, sc->seat, sc->ss, base[1]);
-	if (icons)
-		demo_scene_icons(dl, sc, 1);
-}
-
 static int
 parse_vec(const char *s, double dest[3])
 {
@@ -146,7 +123,7 @@ main(int argc, char **argv)
 		return 1;
 	}
 	struct camera cam;
-	scene_camera(&sc, &cam);
+	demo_scene_camera(&sc, &cam);
 	if (have_eye || have_target) {
 		double e[3], t[3];
 		memcpy(e, cam.xf.p, sizeof e);
@@ -159,7 +136,7 @@ main(int argc, char **argv)
 		double *t = malloc(sizeof(double) * (size_t)bench);
 		for (int i = 0; i < 20 + bench; i++) {
 			double t0 = now_s();
-			build(dl, &sc, &cam, w, h, base, icons);
+			demo_scene_draw(dl, &sc, &cam, w, h, base, icons);
 			render_frame(r, dl, 0, &f);
 			if (i >= 20)
 				t[i - 20] = now_s() - t0;
@@ -173,7 +150,7 @@ main(int argc, char **argv)
 		printf("BENCH render.%dx%d.posture fps=%.1f\n", w, h, 1 / t[bench / 2]);
 		free(t);
 	} else {
-		build(dl, &sc, &cam, w, h, base, icons);
+		demo_scene_draw(dl, &sc, &cam, w, h, base, icons);
 		render_frame(r, dl, 0, &f);
 		if (dl->dropped)
 			fprintf(stderr, "render-scene: %d items did not fit the draw list\n", dl->dropped);
