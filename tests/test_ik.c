@@ -21,37 +21,7 @@
 
 static const double QID[4] = { 0, 0, 0, 1 };
 
-/* ---- allocation counting (not under ASan, which owns malloc) ------------ */
-#if defined(__SANITIZE_ADDRESS__)
-#define COUNT_ALLOCS 0
-#else
-#define COUNT_ALLOCS 1
-extern void *__libc_malloc(size_t);
-extern void *__libc_calloc(size_t, size_t);
-extern void *__libc_realloc(void *, size_t);
-static long allocs;
-void *malloc(size_t n);
-void *calloc(size_t n, size_t k);
-void *realloc(void *p, size_t n);
-void *
-malloc(size_t n)
-{
-	allocs++;
-	return __libc_malloc(n);
-}
-void *
-calloc(size_t n, size_t k)
-{
-	allocs++;
-	return __libc_calloc(n, k);
-}
-void *
-realloc(void *p, size_t n)
-{
-	allocs++;
-	return __libc_realloc(p, n);
-}
-#endif
+#include "alloc_count.h"
 
 /* ---- small figures with analytic answers --------------------------------- */
 

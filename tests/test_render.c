@@ -27,46 +27,7 @@
 #include "demo_scene.h"
 #include "view.h"
 
-/* ---- allocation counting (not under ASan, which owns malloc) ------------ */
-#if defined(__SANITIZE_ADDRESS__)
-#define COUNT_ALLOCS 0
-#else
-#define COUNT_ALLOCS 1
-extern void *__libc_malloc(size_t);
-extern void *__libc_calloc(size_t, size_t);
-extern void *__libc_realloc(void *, size_t);
-extern void __libc_free(void *);
-static long allocs, frees;
-void *malloc(size_t n);
-void *calloc(size_t n, size_t k);
-void *realloc(void *p, size_t n);
-void free(void *p);
-void
-free(void *p)
-{
-	if (p)
-		frees++;
-	__libc_free(p);
-}
-void *
-malloc(size_t n)
-{
-	allocs++;
-	return __libc_malloc(n);
-}
-void *
-calloc(size_t n, size_t k)
-{
-	allocs++;
-	return __libc_calloc(n, k);
-}
-void *
-realloc(void *p, size_t n)
-{
-	allocs++;
-	return __libc_realloc(p, n);
-}
-#endif
+#include "alloc_count.h"
 
 #define W 320
 #define H 240
