@@ -92,12 +92,12 @@ turn(const double a[3], const double u[3], double t, double dest[3])
 		dest[k] = cos(t) * u[k] + sin(t) * v[k];
 }
 
-/* a filled sector of the wheel from angle t0 to t1 */
+/* the wheel from angle t0 to t1: a filled sector (fill) or its rim as lines */
 static void
-sector(struct drawlist *dl, const double c[3], const double a[3], const double u[3], double r,
-       double t0, double t1, const uint8_t col[4])
+wheel_part(struct drawlist *dl, const double c[3], const double a[3], const double u[3], double r,
+	   double t0, double t1, const uint8_t col[4], int fill)
 {
-	int n = (int)ceil(fabs(t1 - t0) / (2 * M_PI) * 48);
+	int n = (int)ceil(fabs(t1 - t0) / (2 * M_PI) * (fill ? 48 : 64));
 	n = n < 1 ? 1 : n;
 	double d0[3], d1[3], p0[3], p1[3];
 	for (int i = 0; i < n; i++) {
@@ -105,24 +105,10 @@ sector(struct drawlist *dl, const double c[3], const double a[3], const double u
 		turn(a, u, t0 + (t1 - t0) * (i + 1) / n, d1);
 		v_madd(c, r, d0, p0);
 		v_madd(c, r, d1, p1);
-		view_triangle(dl, c, p0, p1, col);
-	}
-}
-
-/* the rim from t0 to t1 as lines */
-static void
-arc(struct drawlist *dl, const double c[3], const double a[3], const double u[3], double r,
-    double t0, double t1, const uint8_t col[4])
-{
-	int n = (int)ceil(fabs(t1 - t0) / (2 * M_PI) * 64);
-	n = n < 1 ? 1 : n;
-	double d0[3], d1[3], p0[3], p1[3];
-	for (int i = 0; i < n; i++) {
-		turn(a, u, t0 + (t1 - t0) * i / n, d0);
-		turn(a, u, t0 + (t1 - t0) * (i + 1) / n, d1);
-		v_madd(c, r, d0, p0);
-		v_madd(c, r, d1, p1);
-		view_line(dl, p0, p1, col);
+		if (fill)
+			view_triangle(dl, c, p0, p1, col);
+		else
+			view_line(dl, p0, p1, col);
 	}
 }
 
@@ -144,16 +130,16 @@ view_add_rotation_wheel(struct drawlist *dl, const struct view_wheel *w)
 	/* translucent sectors: green where the spoke may go, red beyond the limits */
 	if (sectors) {
 		view_batch_begin(dl, VIEW_TRIANGLES, VIEW_WORLD, 1, 1);
-		sector(dl, w->center, a, u, r, lo, hi, with_alpha(C_GREEN, 80, tc));
-		sector(dl, w->center, a, u, r, hi, lo + 2 * M_PI, with_alpha(C_RED, 80, tc));
+		wheel_part(dl, w->center, a, u, r, lo, hi, with_alpha(C_GREEN, 80, tc), 1);
+		wheel_part(dl, w->center, a, u, r, hi, lo + 2 * M_PI, with_alpha(C_RED, 80, tc), 1);
 	}
 	/* the rim, coloured by sector, and eight spokes */
 	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, THICK_WIDTH, 1);
 	if (sectors) {
-		arc(dl, w->center, a, u, r, lo, hi, C_GREEN);
-		arc(dl, w->center, a, u, r, hi, lo + 2 * M_PI, C_RED);
+		wheel_part(dl, w->center, a, u, r, lo, hi, C_GREEN, 0);
+		wheel_part(dl, w->center, a, u, r, hi, lo + 2 * M_PI, C_RED, 0);
 	} else {
-		arc(dl, w->center, a, u, r, 0, 2 * M_PI, C_WHEEL);
+		wheel_part(dl, w->center, a, u, r, 0, 2 * M_PI, C_WHEEL, 0);
 	}
 	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, ICON_WIDTH, 1);
 	for (int i = 1; i < 8; i++) {
@@ -224,9 +210,9 @@ view_add_fan(struct drawlist *dl, const double origin[3], const double from[3], 
 	if (sn < 1e-9)
 		return;
 	view_batch_begin(dl, VIEW_TRIANGLES, VIEW_WORLD, 1, 1);
-	sector(dl, origin, a, u, radius, 0, t, with_alpha(rgba, 90, fill));
+	wheel_part(dl, origin, a, u, radius, 0, t, with_alpha(rgba, 90, fill), 1);
 	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, ICON_WIDTH, 1);
-	arc(dl, origin, a, u, radius, 0, t, rgba);
+	wheel_part(dl, origin, a, u, radius, 0, t, rgba, 0);
 	v_madd(origin, radius, u, e);
 	view_line(dl, origin, e, rgba);
 	v_madd(origin, radius, v, e);
