@@ -10,6 +10,10 @@
  * torso: a bend forward to 40 degrees and back; pelvis: a turn to 30
  * degrees and back; hand: the right palm in a 30 cm circle in front;
  * head and eyes: the fixation point across a 2 m arc.
+ *
+ * "behave_bench -v" also prints each frame's solve (time, rounds,
+ * iterations, evaluations, energy, limits) for the one who has to find out
+ * where a slow frame goes.
  */
 #include <stdio.h>
 #include <string.h>
@@ -88,8 +92,9 @@ drive(enum prim p, double t, struct behave *b, const struct model *m, struct sta
 }
 
 int
-main(void)
+main(int argc, char **argv)
 {
+	int verbose = argc > 1 && strcmp(argv[1], "-v") == 0;
 	char err[256];
 	struct human_def hd = human_default_def(HUMAN_MALE);
 	struct ik_clock clock = { bench_clock_us, NULL };
@@ -111,8 +116,14 @@ main(void)
 		for (int f = 0; f < FRAMES; f++) {
 			drive((enum prim)p, (f + 1.0) / FRAMES, &b, m, s, ik, &foot0, &palm0);
 			double t0 = bench_now_us();
-			behave_frame(&b, m, s, ik, &opt, &clock);
+			struct ik_result r = behave_frame(&b, m, s, ik, &opt, &clock);
 			us[f] = bench_now_us() - t0;
+			if (verbose)
+				printf("%s %3d us=%7.1f rounds=%d iter=%3d evals=%4d f=%.3g->%.3g "
+				       "limits=%d met=%d %s\n",
+				       names[p], f, us[f], r.balance_rounds, r.iterations,
+				       r.evaluations, r.f_start, r.f_end, r.active_limits, r.met,
+				       ik_status_to_str(r.status));
 		}
 		double med = bench_percentile(us, FRAMES, 0.5), p95 = bench_percentile(us, FRAMES, 0.95);
 		printf("BENCH behave.%s median_us=%.1f p95_us=%.1f max_us=%.1f steps=%d\n", names[p],
