@@ -87,6 +87,9 @@ struct ik_options {
 	uint64_t budget_us; /* wall-clock limit of the whole solve (needs a clock), 0 = none */
 	double tol_pos;     /* metres: a position objective is met below this */
 	double tol_ori;     /* radians: an orientation objective is met below this */
+	double settle_rel;  /* a start whose energy fell by less than this fraction over its
+			     last 4 iterations has settled: a goal out of reach gains nothing
+			     from polishing (0 = run on to a stationary point) */
 	int balance_rounds; /* at most this many centre-of-mass rounds (§4.5.2) */
 	double balance_tol; /* metres: the centre of mass has settled when it moves less */
 	int restarts;       /* random restarts allowed when stuck away from the goals */
