@@ -576,10 +576,11 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 			goto stationary;
 		/* a goal out of reach: the energy has settled near its floor, and
 		 * grinding on only polishes digits nobody sees (the next frame
-		 * starts from here anyway) */
+		 * starts from here anyway); with restarts left, the rule above
+		 * decides when to look elsewhere */
 		double f_then = since_start > SETTLE_ITER ? recent[(since_start - 1 - SETTLE_ITER) % 8]
 							  : INFINITY;
-		if (opt->settle_rel > 0 && f >= (1 - opt->settle_rel) * f_then)
+		if (restarts_left <= 0 && opt->settle_rel > 0 && f >= (1 - opt->settle_rel) * f_then)
 			goto stationary;
 		/* a variable came off or onto a bound: the metric is stale */
 		int changed = 0;
