@@ -2,6 +2,7 @@
 #include "balance.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 static double
@@ -105,9 +106,47 @@ reach_along(const struct balance *b, const double p[2], const double d[2])
 	return best;
 }
 
+/*
+ * A foot's end of the balance line: its balance site, moving to the ball
+ * of the foot (halfway from the toe joint to the toe tip) as the heel,
+ * once off the floor (contact_height above the toes), rises by another
+ * contact_height, so that on tiptoe the weight goes over what still
+ * touches the floor.
+ */
+static void
+foot_ref(const struct model *m, const struct state *s, int balance_site, const char *side,
+	 double contact_height, double dest[2])
+{
+	char name[32];
+	snprintf(name, sizeof name, "foot_%s.heel", side);
+	int heel = model_find_site(m, name);
+	snprintf(name, sizeof name, "toes_%s.toe", side);
+	int toe = model_find_site(m, name);
+	snprintf(name, sizeof name, "toes_%s.tip", side);
+	int tip = model_find_site(m, name);
+	const double *c = s->site_xf[balance_site].p;
+	double t = 0;
+	if (heel >= 0 && toe >= 0 && tip >= 0 && contact_height > 0) {
+		t = (s->site_xf[heel].p[1] - s->site_xf[toe].p[1]) / contact_height - 1;
+		t = t < 0 ? 0 : t > 1 ? 1 : t;
+	}
+	for (int i = 0; i < 2; i++) {
+		int k = i ? 2 : 0;
+		double ball = t > 0 ? (s->site_xf[toe].p[k] + s->site_xf[tip].p[k]) / 2 : c[k];
+		dest[i] = (1 - t) * c[k] + t * ball;
+	}
+}
+
 int
 balance_measure(const struct model *m, const struct state *s, double contact_height,
 		struct balance *dest)
+{
+	return balance_measure_feet(m, s, contact_height, 0, dest);
+}
+
+int
+balance_measure_feet(const struct model *m, const struct state *s, double contact_height,
+		     unsigned tiptoe, struct balance *dest)
 {
 	static const char *const feet[4] = { "foot_l", "foot_r", "toes_l", "toes_r" };
 	int bl = model_find_site(m, "foot_l.balance"), br = model_find_site(m, "foot_r.balance");
@@ -133,8 +172,8 @@ balance_measure(const struct model *m, const struct state *s, double contact_hei
 	int nh = balance_hull(pts, n, hull);
 	dest->npoly = nh < BALANCE_POLY_MAX ? nh : BALANCE_POLY_MAX;
 	memcpy(dest->poly, hull, sizeof *hull * (size_t)dest->npoly);
-	dest->ref_l[0] = s->site_xf[bl].p[0], dest->ref_l[1] = s->site_xf[bl].p[2];
-	dest->ref_r[0] = s->site_xf[br].p[0], dest->ref_r[1] = s->site_xf[br].p[2];
+	foot_ref(m, s, bl, "l", tiptoe & 1 ? contact_height : 0, dest->ref_l);
+	foot_ref(m, s, br, "r", tiptoe & 2 ? contact_height : 0, dest->ref_r);
 	dest->point[0] = s->com[0], dest->point[1] = s->com[2];
 	/* forward: across the line from left to right, turned as the feet face (up x line) */
 	double d[2] = { dest->ref_r[0] - dest->ref_l[0], dest->ref_r[1] - dest->ref_l[1] };

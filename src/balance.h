@@ -36,6 +36,14 @@ struct balance {
 int balance_measure(const struct model *m, const struct state *s, double contact_height,
 		    struct balance *dest);
 
+/*
+ * The same, where the feet in the bitmask tiptoe (1 left, 2 right) may stand
+ * on tiptoe: such a foot's end of the balance line moves from its balance
+ * site to the ball of the foot as its heel rises off the floor, so that the
+ * weight goes over what still touches it. For heels allowed to rise.
+ */
+int balance_measure_feet(const struct model *m, const struct state *s, double contact_height,
+			 unsigned tiptoe, struct balance *dest);
 /* the parameters (x, z) of any floor point for the feet as measured in b (Figure 5.2) */
 void balance_params_of(const struct balance *b, const double p[2], double *x, double *z);
 

@@ -12,6 +12,7 @@
 
 #define W_FOOT 10.0    /* the feet and balance outweigh the rest: they carry the body */
 #define W_BALANCE 10.0
+#define W_HEEL_RISE (W_BALANCE / 1000)
 #define W_PELVIS 2.0
 #define W_TORSO 2.0
 #define STEP_LIFT 0.08 /* m: how high a stepping foot rises */
@@ -53,6 +54,17 @@ feet_heading(const struct behave *b, const struct state *s)
 	return atan2(sin(a) + sin(c), cos(a) + cos(c));
 }
 
+/* balance as the behaviours see it: feet whose heels may rise stand on tiptoe, but not mid-step */
+static int
+measure(struct behave *b, const struct model *m, const struct state *s)
+{
+	unsigned tiptoe = 0;
+	for (int k = 0; k < 2; k++)
+		if (b->p.heel[k] == HEEL_ALLOW_RISE && !b->p.seated && !b->step.active)
+			tiptoe |= 1u << k;
+	return balance_measure_feet(m, s, BALANCE_CONTACT, tiptoe, &b->bal);
+}
+
 /* ---- the constraints ----------------------------------------------------------- */
 
 static void
@@ -85,8 +97,10 @@ heel_def(const struct behave *b, const struct state *s, int side, struct ik_cons
 	d->goal_xf.p[1] = 0;
 	d->goal_xf.p[0] = s->site_xf[b->s_heel[side]].p[0];
 	d->goal_xf.p[2] = s->site_xf[b->s_heel[side]].p[2];
-	d->weight = 10 * W_FOOT; /* metres against the radians of the torso: heels stay down */
-	d->enabled = b->p.heel[side] == HEEL_KEEP_ON_FLOOR;
+	/* keep: metres against the radians of the torso, heels stay down; allow
+	 * to rise: down only while nothing else needs it up (a thousandth of
+	 * balance's pull), so a rise on tiptoe costs the centre of mass < 0.1 % */
+	d->weight = b->p.heel[side] == HEEL_KEEP_ON_FLOOR ? 10 * W_FOOT : W_HEEL_RISE;
 	if (b->p.seated) { /* the heel's whole frame where it is: pivot and heel rules rest */
 		d->pos = IK_POINT;
 		d->ori = IK_FRAME;
@@ -264,7 +278,7 @@ behave_attach(struct behave *b, const struct model *m, struct state *s, struct i
 		b->c_heel[k] = ik_add(ik, m, &d);
 	}
 	/* balance: the centre of mass, carried by the lower torso, over the balance point */
-	if (balance_measure(m, s, BALANCE_CONTACT, &b->bal) < 0)
+	if (measure(b, m, s) < 0)
 		return -1;
 	b->bal_x = b->bal.x;
 	b->bal_z = b->bal.z;
@@ -364,7 +378,7 @@ step_advance(struct behave *b, const struct model *m, struct state *s, struct ik
 	st->active = 0;
 	b->steps_taken++;
 	kin_update(m, s);
-	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
+	measure(b, m, s);
 	balance_params_of(&b->bal, b->bal_point, &b->bal_x, &b->bal_z);
 	struct ik_constraint_def d;
 	heel_def(b, s, st->side, &d);
@@ -383,6 +397,18 @@ step_trigger(struct behave *b, const struct model *m, struct state *s, struct ik
 {
 	const struct balance *bal = &b->bal;
 	if (b->root == BALANCE_ROOT_LOWER_TORSO || bal->npoly < 3 || bal->margin >= 0)
+		return;
+	/* a heel left the floor and the polygon shrank to the toes under the
+	 * centre of mass: with the balance point still inside, this frame's
+	 * solve carries the weight over the balls of the feet (tiptoe), no step */
+	double goal[2];
+	if (b->p.balance_follows_feet)
+		balance_point_of(bal, b->bal_x, b->bal_z, goal);
+	else
+		memcpy(goal, b->bal_point, sizeof goal);
+	int heel_up = s->site_xf[b->s_heel[0]].p[1] > BALANCE_CONTACT ||
+		      s->site_xf[b->s_heel[1]].p[1] > BALANCE_CONTACT;
+	if (heel_up && balance_margin(bal, goal) >= 0)
 		return;
 	/* out past a foot's outer edge rather than the front or back */
 	int to_side = (bal->x < 0 || bal->x > 1) && fabs(bal->z) <= 1;
@@ -450,7 +476,7 @@ struct ik_result
 behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
 	     const struct ik_options *opt, const struct ik_clock *clock)
 {
-	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
+	measure(b, m, s);
 	/* automatic rooting (§5.4.2.4), never in the middle of a step */
 	if (b->p.auto_root && !b->step.active && !b->p.root_through_com && !b->p.seated) {
 		double com_h = s->com[1];
@@ -485,7 +511,7 @@ behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik
 			s->root_xf.p[i] += b->com_fixed[i] - s->com[i];
 		kin_update(m, s);
 	}
-	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
+	measure(b, m, s);
 	/* stability as data: the alert's edge, for the loop to tell */
 	int low = b->bal.margin < b->p.stability_threshold;
 	b->stability_changed = low != b->stability_low;
@@ -505,7 +531,7 @@ static void
 follow_balance_line(struct behave *b, const struct model *m, struct state *s, int side,
 		    struct xform *g)
 {
-	if (balance_measure(m, s, BALANCE_CONTACT, &b->bal) < 0)
+	if (measure(b, m, s) < 0)
 		return;
 	const double *fixed = side ? b->bal.ref_l : b->bal.ref_r, *moving = side ? b->bal.ref_r : b->bal.ref_l;
 	const double *toe = s->site_xf[b->s_toe[side]].p;
@@ -555,7 +581,7 @@ void
 behave_move_com(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
 		double dx, double dz, double dy)
 {
-	balance_measure(m, s, BALANCE_CONTACT, &b->bal);
+	measure(b, m, s);
 	double target[2] = { b->bal.point[0] + dx, b->bal.point[1] + dz };
 	/* the new parameters are held from now on (§5.5.2) */
 	balance_params_of(&b->bal, target, &b->bal_x, &b->bal_z);

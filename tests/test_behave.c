@@ -94,6 +94,14 @@ snapshot(const struct rig *r, const char *name, const double eye[3])
 }
 
 static const double FRONT[3] = { 1.6, 1.4, 2.6 };
+static const double SIDE[3] = { 2.8, 1.0, 0.4 };
+
+static double
+dist3(const double a[3], const double b[3])
+{
+	double d[3] = { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+	return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
 
 static double
 dist2(const double a[2], const double b[2])
@@ -187,6 +195,67 @@ test_fig_5_5_squat_reroots_at_the_lower_torso(void **unused)
 	assert_true(fabs(pr[3]) < sin(3 * DEG)); /* x axis has no vertical part */
 	snapshot(&r, "fig5.5-squat", FRONT);
 	rig_free(&r);
+}
+
+/*
+ * Tiptoe (Table D.1, §5.5.2): with "allow heel to rise", raising the centre
+ * of mass 5 cm lifts the heels and brings the weight over the balls of the
+ * feet: the toes stay, and the centre of mass ends above the toes' contact
+ * (between each foot's toe joint and toe tip, the part still on the
+ * floor), not over the mid-foot it started from; no step. With the default
+ * "keep heel on floor" the heels stay down and the centre of mass cannot
+ * rise more than a centimetre (the legs are straight already).
+ */
+static void
+test_tiptoe_needs_heels_allowed_to_rise(void **unused)
+{
+	(void)unused;
+	for (int rise = 0; rise < 2; rise++) {
+		struct behave_params p = behave_default_params();
+		p.heel[0] = p.heel[1] = rise ? HEEL_ALLOW_RISE : HEEL_KEEP_ON_FLOOR;
+		struct rig r;
+		rig_make(&r, &p);
+		frames(&r, 3);
+		double h0 = r.s->com[1], toe0[2][3], heel0[2];
+		for (int k = 0; k < 2; k++) {
+			memcpy(toe0[k], r.s->site_xf[r.b.s_toe[k]].p, sizeof toe0[k]);
+			heel0[k] = r.s->site_xf[r.b.s_heel[k]].p[1];
+			assert_true(fabs(heel0[k]) < 1e-3); /* at rest the heels are down either way */
+		}
+		behave_move_com(&r.b, r.m, r.s, r.ik, 0, 0, 0.05);
+		frames(&r, 30);
+		double *com = r.s->com;
+		printf("heels %s: centre of mass up %.1f mm, heels at %.1f / %.1f mm, z %.3f\n",
+		       rise ? "rise" : "floor", 1e3 * (com[1] - h0),
+		       1e3 * r.s->site_xf[r.b.s_heel[0]].p[1], 1e3 * r.s->site_xf[r.b.s_heel[1]].p[1],
+		       com[2]);
+		printf("toes moved %.2f / %.2f mm\n", 1e3 * dist3(r.s->site_xf[r.b.s_toe[0]].p, toe0[0]),
+		       1e3 * dist3(r.s->site_xf[r.b.s_toe[1]].p, toe0[1]));
+		/* with the heels down the goal is out of reach and the free foot's
+		 * toes give a few mm to it (the elevation shares the balance
+		 * constraint's weight): only the root foot is held to 1 mm there */
+		for (int k = 0; k < 2; k++)
+			if (rise || k == (int)r.b.root)
+				assert_true(dist3(r.s->site_xf[r.b.s_toe[k]].p, toe0[k]) < 1e-3);
+		assert_int_equal(r.b.steps_taken, 0);
+		assert_false(r.b.step.active);
+		if (!rise) {
+			assert_true(com[1] - h0 < 0.01);
+			for (int k = 0; k < 2; k++)
+				assert_true(fabs(r.s->site_xf[r.b.s_heel[k]].p[1]) < 3e-3);
+			rig_free(&r);
+			continue;
+		}
+		assert_true(fabs(com[1] - h0 - 0.05) < 3e-3);
+		for (int k = 0; k < 2; k++) {
+			assert_true(r.s->site_xf[r.b.s_heel[k]].p[1] > 0.03);
+			const double *toe = r.s->site_xf[r.b.s_toe[k]].p;
+			const double *tip = r.s->site_xf[r.b.s_tip[k]].p;
+			assert_true(com[2] > fmin(toe[2], tip[2]) && com[2] < fmax(toe[2], tip[2]));
+		}
+		snapshot(&r, "tiptoe", SIDE);
+		rig_free(&r);
+	}
 }
 
 /* Figure 5.6: dragging the centre of mass forward past the feet takes a step */
@@ -612,6 +681,7 @@ main(void)
 		cmocka_unit_test(test_fig_5_3_balance_point_follows_feet),
 		cmocka_unit_test(test_fig_5_4_shift_com_feet_held),
 		cmocka_unit_test(test_fig_5_5_squat_reroots_at_the_lower_torso),
+		cmocka_unit_test(test_tiptoe_needs_heels_allowed_to_rise),
 		cmocka_unit_test(test_fig_5_6_step_when_losing_balance),
 		cmocka_unit_test(test_step_to_the_side),
 		cmocka_unit_test(test_foot_orientation_follows_balance_line),

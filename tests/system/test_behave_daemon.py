@@ -335,6 +335,29 @@ def test_fig_5_5_lowering_the_centre_of_mass_squats_and_roots_the_lower_torso(da
         assert abs(pelvis[1][0]) < math.sin(math.radians(3))  # its x axis stays level
 
 
+def test_tiptoe_by_commands_lifts_the_heels_and_weights_the_balls_of_the_feet(daemon):
+    """Tiptoe (Table D.1): heels allowed to rise, the centre of mass 5 cm up: the heels
+    leave the floor, the toes stay (±1 mm), and the weight moves over the balls of the
+    feet, between each foot's toe joint and toe tip; no step."""
+    with daemon.client() as c:
+        behaving_jack(c)
+        c.request("set behavior jack heel=rise")
+        settled(c)
+        feet = toes(c)
+        tips = [site(c, f"jack toes_{s}.tip")[0] for s in "lr"]
+        com0 = c.request("get posture jack")["com"]
+        c.request("move com jack 0 0 0.05")
+        settled(c)
+        b = c.request("get behavior jack")
+        com = c.request("get posture jack")["com"]
+        assert abs(com[1] - com0[1] - 0.05) < 3e-3
+        assert b["steps"] == 0
+        for s, toe, tip, toe0 in zip("lr", toes(c), tips, feet):
+            assert near(toe, toe0, 1e-3)
+            assert site(c, f"jack foot_{s}.heel")[0][1] > 0.03
+            assert min(toe[2], tip[2]) < com[2] < max(toe[2], tip[2])
+
+
 def test_fig_5_7_bending_forward_keeps_balance_with_feet_planted(daemon):
     """Figure 5.7 by commands: a 45 degree bend from the waist moves the hips back, the
     centre of mass stays over the balance point (±5 mm), both feet stay (±1 mm)."""

@@ -120,10 +120,11 @@ main(int argc, char **argv)
 			us[f] = bench_now_us() - t0;
 			if (verbose)
 				printf("%s %3d us=%7.1f rounds=%d iter=%3d evals=%4d f=%.3g->%.3g "
-				       "limits=%d met=%d %s\n",
+				       "limits=%d met=%d %s steps=%d margin=%.3f heels=%.3f,%.3f\n",
 				       names[p], f, us[f], r.balance_rounds, r.iterations,
 				       r.evaluations, r.f_start, r.f_end, r.active_limits, r.met,
-				       ik_status_to_str(r.status));
+				       ik_status_to_str(r.status), b.steps_taken, b.bal.margin,
+				       s->site_xf[b.s_heel[0]].p[1], s->site_xf[b.s_heel[1]].p[1]);
 		}
 		double med = bench_percentile(us, FRAMES, 0.5), p95 = bench_percentile(us, FRAMES, 0.95);
 		printf("BENCH behave.%s median_us=%.1f p95_us=%.1f max_us=%.1f steps=%d\n", names[p],
