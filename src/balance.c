@@ -117,18 +117,21 @@ static void
 foot_ref(const struct model *m, const struct state *s, int balance_site, const char *side,
 	 double contact_height, double dest[2])
 {
-	char name[32];
-	snprintf(name, sizeof name, "foot_%s.heel", side);
-	int heel = model_find_site(m, name);
-	snprintf(name, sizeof name, "toes_%s.toe", side);
-	int toe = model_find_site(m, name);
-	snprintf(name, sizeof name, "toes_%s.tip", side);
-	int tip = model_find_site(m, name);
 	const double *c = s->site_xf[balance_site].p;
 	double t = 0;
-	if (heel >= 0 && toe >= 0 && tip >= 0 && contact_height > 0) {
-		t = (s->site_xf[heel].p[1] - s->site_xf[toe].p[1]) / contact_height - 1;
-		t = t < 0 ? 0 : t > 1 ? 1 : t;
+	int toe = -1, tip = -1;
+	if (contact_height > 0) { /* only a foot that may stand on tiptoe: no lookups otherwise */
+		char name[32];
+		snprintf(name, sizeof name, "foot_%s.heel", side);
+		int heel = model_find_site(m, name);
+		snprintf(name, sizeof name, "toes_%s.toe", side);
+		toe = model_find_site(m, name);
+		snprintf(name, sizeof name, "toes_%s.tip", side);
+		tip = model_find_site(m, name);
+		if (heel >= 0 && toe >= 0 && tip >= 0) {
+			t = (s->site_xf[heel].p[1] - s->site_xf[toe].p[1]) / contact_height - 1;
+			t = t < 0 ? 0 : t > 1 ? 1 : t;
+		}
 	}
 	for (int i = 0; i < 2; i++) {
 		int k = i ? 2 : 0;

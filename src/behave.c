@@ -357,6 +357,16 @@ static void step_start(struct behave *b, struct state *s, struct ik *ik, int sid
 
 /* ---- active behaviours ------------------------------------------------------ */
 
+/* the balance point the figure holds: by its parameters when it follows the feet, else fixed */
+static void
+held_balance_point(const struct behave *b, double dest[2])
+{
+	if (b->p.balance_follows_feet)
+		balance_point_of(&b->bal, b->bal_x, b->bal_z, dest);
+	else
+		memmove(dest, b->bal_point, sizeof b->bal_point);
+}
+
 /* the stepping foot on its way: a straight line, lifted in the middle */
 static void
 step_advance(struct behave *b, const struct model *m, struct state *s, struct ik *ik)
@@ -402,10 +412,7 @@ step_trigger(struct behave *b, const struct model *m, struct state *s, struct ik
 	 * centre of mass: with the balance point still inside, this frame's
 	 * solve carries the weight over the balls of the feet (tiptoe), no step */
 	double goal[2];
-	if (b->p.balance_follows_feet)
-		balance_point_of(bal, b->bal_x, b->bal_z, goal);
-	else
-		memcpy(goal, b->bal_point, sizeof goal);
+	held_balance_point(b, goal);
 	int heel_up = s->site_xf[b->s_heel[0]].p[1] > BALANCE_CONTACT ||
 		      s->site_xf[b->s_heel[1]].p[1] > BALANCE_CONTACT;
 	if (heel_up && balance_margin(bal, goal) >= 0)
@@ -490,8 +497,8 @@ behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik
 	if (!b->step.active && b->p.step_when_twisted)
 		twist_trigger(b, s, ik);
 	/* balance point follows feet (§D.2.1): the same x and z whatever the feet do */
-	if (b->p.balance_follows_feet && !b->step.active)
-		balance_point_of(&b->bal, b->bal_x, b->bal_z, b->bal_point);
+	if (!b->step.active)
+		held_balance_point(b, b->bal_point);
 	struct ik_constraint_def d = *ik_get(ik, b->c_balance);
 	balance_goal(b, &d);
 	ik_set_goal(ik, b->c_balance, &d.goal_xf);
