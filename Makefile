@@ -8,7 +8,7 @@
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I/usr/include/freetype2 -MMD -MP
+BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -MMD -MP
 LIBS    := -ljansson -lOSMesa -lfreetype -lpng -lm
 TESTLIBS := -lcmocka -lnlopt
 # NLopt is the independent minimiser the IK tests and benchmarks compare against;
@@ -21,7 +21,10 @@ PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip
 
-LIB_SRC   := $(filter-out src/main.c,$(wildcard src/*.c))
+# the layers, bottom up; each folder includes only from those before it (make layer-check)
+LAYERS    := figure pose draw interact daemon
+MAIN_SRC  := src/daemon/main.c
+LIB_SRC   := $(filter-out $(MAIN_SRC),$(foreach l,$(LAYERS),$(wildcard src/$(l)/*.c)) $(wildcard devices/*.c))
 TOOL_SRC  := $(wildcard tools/*.c)
 TEST_SRC  := $(wildcard tests/test_*.c)
 BENCH_SRC := $(wildcard tools/bench/*.c)
@@ -48,7 +51,7 @@ build/$(1)/bin/%: build/$(1)/tools/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
 
-build/$(1)/bin/postured: build/$(1)/src/main.o $$($(1)_LIB)
+build/$(1)/bin/postured: build/$(1)/src/daemon/main.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
 
@@ -60,7 +63,7 @@ build/$(1)/bench/%: build/$(1)/tools/bench/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(BENCHLIBS) $(LIBS) -o $$@
 
--include $$(patsubst %.c,build/$(1)/%.d,$$(LIB_SRC) src/main.c $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC))
+-include $$(patsubst %.c,build/$(1)/%.d,$$(LIB_SRC) $(MAIN_SRC) $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC))
 endef
 
 $(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,))
@@ -97,7 +100,7 @@ $(VENV)/.installed: tests/requirements.txt | build/.deps-apt
 run: deps build/rel/bin/postured build/rel/bin/posture-figure
 	@mkdir -p build/run
 	build/rel/bin/postured --socket build/run/postured.sock --state-dir build/run/state \
-		--frames build/run/frames --init tools/kiosk.init --library src/figures
+		--frames build/run/frames --init tools/kiosk.init --library src/figure/library
 
 # ---- tests ---------------------------------------------------------------
 test: deps unit-test system-test

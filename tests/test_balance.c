@@ -10,9 +10,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "balance.h"
-#include "human.h"
-#include "kin.h"
+#include "pose/balance.h"
+#include "figure/human.h"
+#include "figure/kin.h"
 
 /* two feet as rectangles 0.1 wide and 0.26 long, 0.2 apart, facing +z; left at +x */
 static void

@@ -16,12 +16,12 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "behave.h"
-#include "human.h"
-#include "kin.h"
-#include "render.h"
-#include "sink.h"
-#include "view.h"
+#include "pose/behave.h"
+#include "figure/human.h"
+#include "figure/kin.h"
+#include "draw/render.h"
+#include "draw/sink.h"
+#include "draw/view.h"
 
 #define DEG (M_PI / 180)
 

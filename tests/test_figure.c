@@ -15,13 +15,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "figure.h"
-#include "model.h"
-#include "obj.h"
+#include "figure/figure.h"
+#include "figure/model.h"
+#include "figure/obj.h"
 
 /* the tests run from the top of the repository, as `make unit-test` does */
 #define FIG_DIR "tests/figures"
-#define ENV_DIR "src/figures"
+#define ENV_DIR "src/figure/library"
 
 static const double QID[4] = { 0, 0, 0, 1 };
 

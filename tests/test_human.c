@@ -12,10 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "human.h"
-#include "kin.h"
-#include "model.h"
-#include "state.h"
+#include "figure/human.h"
+#include "figure/kin.h"
+#include "figure/model.h"
+#include "figure/state.h"
 
 static const double DEG = M_PI / 180;
 

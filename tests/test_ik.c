@@ -12,10 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "human.h"
-#include "ik.h"
-#include "kin.h"
-#include "stance.h"
+#include "figure/human.h"
+#include "pose/ik.h"
+#include "figure/kin.h"
+#include "pose/stance.h"
 
 #define DEG (M_PI / 180)
 

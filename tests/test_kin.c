@@ -11,9 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "kin.h"
-#include "model.h"
-#include "state.h"
+#include "figure/kin.h"
+#include "figure/model.h"
+#include "figure/state.h"
 
 static const double QID[4] = { 0, 0, 0, 1 };
 

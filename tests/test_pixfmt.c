@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pixfmt.h"
+#include "draw/pixfmt.h"
 
 static const char *const NAMES[] = {
 	"RGB565",   "BGR565",	"RGB888",   "BGR888",	"XRGB8888", "ARGB8888",

@@ -19,19 +19,19 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "figure.h"
-#include "human.h"
-#include "ik.h"
-#include "kin.h"
-#include "render.h"
-#include "demo_scene.h"
-#include "view.h"
+#include "figure/figure.h"
+#include "figure/human.h"
+#include "pose/ik.h"
+#include "figure/kin.h"
+#include "draw/render.h"
+#include "draw/demo_scene.h"
+#include "draw/view.h"
 
 #include "alloc_count.h"
 
 #define W 320
 #define H 240
-#define SEAT "src/figures/vehicle_seat.fig"
+#define SEAT "src/figure/library/vehicle_seat.fig"
 
 #define DEG (M_PI / 180)
 

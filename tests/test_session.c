@@ -11,10 +11,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "attach.h"
-#include "kin.h"
-#include "session.h"
-#include "words.h"
+#include "pose/attach.h"
+#include "figure/kin.h"
+#include "daemon/session.h"
+#include "daemon/words.h"
 
 static void
 test_words_split_quotes_tags_and_limits(void **unused)

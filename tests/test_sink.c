@@ -17,8 +17,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "pixfmt.h"
-#include "sink.h"
+#include "draw/pixfmt.h"
+#include "draw/sink.h"
 
 /* ---- helpers ------------------------------------------------------------ */
 

@@ -10,11 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "human.h"
-#include "kin.h"
-#include "model.h"
-#include "spine.h"
-#include "state.h"
+#include "figure/human.h"
+#include "figure/kin.h"
+#include "figure/model.h"
+#include "pose/spine.h"
+#include "figure/state.h"
 
 static const double DEG = M_PI / 180;
 static const double TOL = 1e-12;

@@ -8,12 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "figure.h"
-#include "human.h"
-#include "kin.h"
-#include "model.h"
-#include "state.h"
-#include "urdf.h"
+#include "figure/figure.h"
+#include "figure/human.h"
+#include "figure/kin.h"
+#include "figure/model.h"
+#include "figure/state.h"
+#include "figure/urdf.h"
 
 static const char usage[] =
 	"usage: posture-figure [FIGURE OPTIONS] [POSTURE OPTIONS] COMMAND\n"

@@ -17,13 +17,13 @@
 #include <string.h>
 #include <time.h>
 
-#include "figure.h"
-#include "human.h"
-#include "ik.h"
-#include "kin.h"
-#include "render.h"
-#include "demo_scene.h"
-#include "view.h"
+#include "figure/figure.h"
+#include "figure/human.h"
+#include "pose/ik.h"
+#include "figure/kin.h"
+#include "draw/render.h"
+#include "draw/demo_scene.h"
+#include "draw/view.h"
 
 static const char usage[] =
 	"usage: render-scene [OPTIONS]\n"
@@ -33,7 +33,7 @@ static const char usage[] =
 	"  --samples 0|4             multisampling (default 0)\n"
 	"  --no-shadows              no shadows on the floor\n"
 	"  --eye X,Y,Z --target X,Y,Z  the camera (default: the scene's)\n"
-	"  --seat FILE               the vehicle seat figure (default src/figures/vehicle_seat.fig)\n"
+	"  --seat FILE               the vehicle seat figure (default src/figure/library/vehicle_seat.fig)\n"
 	"  --out FILE.png            write the picture (default scene.png)\n"
 	"  --bench N                 render N frames after 20 of warm-up and print timings\n";
 
@@ -75,7 +75,7 @@ write_png(const char *path, const struct frame *f)
 int
 main(int argc, char **argv)
 {
-	const char *scene = "standing", *out = "scene.png", *seat = "src/figures/vehicle_seat.fig";
+	const char *scene = "standing", *out = "scene.png", *seat = "src/figure/library/vehicle_seat.fig";
 	int w = 640, h = 480, icons = 0, bench = 0, have_eye = 0, have_target = 0;
 	double eye[3], target[3];
 	struct render_def rd = render_default_def();

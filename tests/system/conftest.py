@@ -7,7 +7,7 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 BUILD = ROOT / os.environ.get("POSTURE_BUILD", "build/rel")
-FIGURES = ROOT / "src" / "figures"
+FIGURES = ROOT / "src" / "figure" / "library"
 
 
 def run_tool(*args, stdin=None):

@@ -5,7 +5,7 @@ import math
 from conftest import ROOT
 from daemon import Daemon, daemon, daemon_factory  # noqa: F401 (fixtures)
 
-LIBRARY = ["--library", str(ROOT / "src" / "figures")]  # lib:box.fig, lib:table.fig
+LIBRARY = ["--library", str(ROOT / "src" / "figure" / "library")]  # lib:box.fig, lib:table.fig
 
 
 def settled(c, frames=400):

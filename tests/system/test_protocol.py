@@ -188,7 +188,7 @@ def substitute(line, env):
 
 def prepare_state_dir(state_dir):
     """The files transcripts may refer to (see basics.txt)."""
-    shutil.copytree(ROOT / "src" / "figures", state_dir / "figures")
+    shutil.copytree(ROOT / "src" / "figure" / "library", state_dir / "figures")
     (state_dir / "junk.txt").write_text("this is neither a figure, a posture nor a session\n")
     (state_dir / "newer.pst").write_text("posture 99\nfigure human_male\nend\n")
 

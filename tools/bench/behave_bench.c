@@ -19,9 +19,9 @@
 #include <string.h>
 
 #include "bench_util.h"
-#include "behave.h"
-#include "human.h"
-#include "kin.h"
+#include "pose/behave.h"
+#include "figure/human.h"
+#include "figure/kin.h"
 
 #define FRAMES 120
 #define DEG (M_PI / 180)

@@ -14,8 +14,8 @@
 #include <time.h>
 
 #include "bench_util.h"
-#include "human.h"
-#include "kin.h"
+#include "figure/human.h"
+#include "figure/kin.h"
 
 #define BATCHES 31
 #define MAX_POSTURES 4096

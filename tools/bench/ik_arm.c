@@ -46,9 +46,9 @@
 #include <time.h>
 
 #include "bench_util.h"
-#include "human.h"
-#include "ik.h"
-#include "kin.h"
+#include "figure/human.h"
+#include "pose/ik.h"
+#include "figure/kin.h"
 
 #define NARM 9
 #define MAX_TARGETS 100000

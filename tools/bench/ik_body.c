@@ -19,10 +19,10 @@
 #include <time.h>
 
 #include "bench_util.h"
-#include "human.h"
-#include "ik.h"
-#include "kin.h"
-#include "stance.h"
+#include "figure/human.h"
+#include "pose/ik.h"
+#include "figure/kin.h"
+#include "pose/stance.h"
 
 #define TARGETS 200
 #define MAX_FRAMES 300

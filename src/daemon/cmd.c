@@ -1,0 +1,316 @@
+/* cmd.c - dispatch of request lines through the command table */
+#include "daemon/cmd.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "daemon/session.h"
+
+typedef int (*cmd_handler)(struct cmd_ctx *);
+
+struct cmd_entry {
+	const char *verb, *object;
+	int min_args, max_args, flags;
+	cmd_handler fn;
+	const char *usage, *reply, *summary;
+};
+
+static const struct cmd_entry table[] = {
+#define CMD(verb, obj, mn, mx, fl, fn, usage, reply, summary) \
+	{ verb, obj, mn, mx, fl, fn, usage, reply, summary },
+#include "proto/commands.def"
+#undef CMD
+};
+
+#define NCMD ((int)(sizeof table / sizeof *table))
+
+int
+cmd_fail(struct cmd_ctx *c, const char *code, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(c->msg, sizeof c->msg, fmt, ap);
+	va_end(ap);
+	c->code = code;
+	return -1;
+}
+
+/* the table entry for the words, or NULL with the error set */
+static const struct cmd_entry *
+lookup(struct cmd_ctx *c, const struct words *w, int *first_arg)
+{
+	int verb_known = 0;
+	for (int i = 0; i < NCMD; i++) {
+		const struct cmd_entry *e = &table[i];
+		if (strcmp(e->verb, w->w[0]))
+			continue;
+		verb_known = 1;
+		if (!e->object[0]) {
+			*first_arg = 1;
+			return e;
+		}
+		if (w->n > 1 && !strcmp(e->object, w->w[1])) {
+			*first_arg = 2;
+			return e;
+		}
+	}
+	if (!verb_known) {
+		cmd_fail(c, "unknown-command", "unknown command '%.60s' (try 'help')", w->w[0]);
+		return NULL;
+	}
+	char objs[256] = "";
+	for (int i = 0; i < NCMD; i++)
+		if (!strcmp(table[i].verb, w->w[0]) && strlen(objs) + strlen(table[i].object) + 3 < sizeof objs)
+			strcat(strcat(objs, objs[0] ? ", " : ""), table[i].object);
+	cmd_fail(c, "unknown-command", "'%.60s' takes one of: %s", w->w[0], objs);
+	return NULL;
+}
+
+static char *
+dump_reply(int ok, const char *tag, json_t *result, const char *code, const char *msg)
+{
+	json_t *r = json_object();
+	json_object_set_new(r, "ok", json_boolean(ok));
+	if (tag && tag[0])
+		json_object_set_new(r, "tag", json_string(tag));
+	if (ok) {
+		json_object_set_new(r, "result", result ? result : json_object());
+	} else {
+		json_t *e = json_object();
+		json_object_set_new(e, "code", json_string(code));
+		/* messages quote client text: keep them valid UTF-8 for JSON */
+		json_t *m = json_string(msg);
+		json_object_set_new(e, "message", m ? m : json_string("(message not valid UTF-8)"));
+		json_object_set_new(r, "error", e);
+		json_decref(result);
+	}
+	char *s = json_dumps(r, JSON_COMPACT | JSON_REAL_PRECISION(17));
+	json_decref(r);
+	return s;
+}
+
+/* bytes a request may not hold (PROTOCOL.md Framing) */
+static int
+has_control_bytes(const char *line, size_t len)
+{
+	for (size_t i = 0; i < len; i++) {
+		unsigned char b = (unsigned char)line[i];
+		if ((b < 0x20 && b != '\t') || b == 0x7f)
+			return 1;
+	}
+	return 0;
+}
+
+void
+cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_outcome *out)
+{
+	static struct words w; /* 64 KiB: not on the stack; the loop is single-threaded */
+	struct cmd_ctx c = { .d = d, .client = client };
+	const char *msg;
+	memset(out, 0, sizeof *out);
+	if (len && line[len - 1] == '\r')
+		len--;
+	out->reply = 1;
+	if (len > WORDS_LINE_MAX) {
+		out->close = 1;
+		out->json = dump_reply(0, NULL, NULL, "too-long", "line longer than 65536 bytes");
+		return;
+	}
+	if (has_control_bytes(line, len)) {
+		out->close = 1;
+		out->json = dump_reply(0, NULL, NULL, "binary", "control bytes in a request line");
+		return;
+	}
+	switch (words_split(line, len, &w, &msg)) {
+	case WORDS_EMPTY:
+		out->reply = 0;
+		return;
+	case WORDS_PARSE:
+		out->json = dump_reply(0, w.tag, NULL, "parse", msg);
+		return;
+	case WORDS_TOO_MANY:
+		out->json = dump_reply(0, w.tag, NULL, "arity", msg);
+		return;
+	case WORDS_OK:
+		break;
+	}
+	for (int i = 0; i < w.n; i++)
+		if (w.w[i][0] == '=') {
+			out->json = dump_reply(0, w.tag, NULL, "parse", "an argument with an empty key");
+			return;
+		}
+	int first = 1;
+	const struct cmd_entry *e = lookup(&c, &w, &first);
+	if (!e) {
+		out->json = dump_reply(0, w.tag, NULL, c.code, c.msg);
+		return;
+	}
+	c.argc = w.n - first;
+	c.argv = w.w + first;
+	if (c.argc < e->min_args || c.argc > e->max_args) {
+		out->json = dump_reply(0, w.tag, NULL, "arity", e->usage);
+		return;
+	}
+	/* a checkpoint for undo, taken before the change */
+	char *before = NULL;
+	size_t before_len = 0;
+	int checkpoint = (e->flags & CMD_MUTATES) && e->fn != cmd_undo && e->fn != cmd_redo;
+	if (checkpoint && !(before = session_to_string(&d->env, &before_len))) {
+		out->json = dump_reply(0, w.tag, NULL, "internal", "out of memory");
+		return;
+	}
+	c.result = json_object();
+	int rc = e->fn(&c);
+	if (rc == 0 && checkpoint) {
+		daemon_checkpoints_push(&d->undo, before, before_len);
+		daemon_checkpoints_clear(&d->redo);
+		before = NULL;
+	}
+	free(before);
+	out->ok = rc == 0;
+	out->mutated = rc == 0 && (e->flags & CMD_MUTATES);
+	out->close = c.quit;
+	out->json = dump_reply(rc == 0, w.tag, c.result, c.code ? c.code : "internal", c.msg);
+}
+
+/* a table cell: '|' would end the cell early in markdown */
+static void
+cell(FILE *f, const char *s)
+{
+	for (; *s; s++) {
+		if (*s == '|')
+			fputc('\\', f);
+		fputc(*s, f);
+	}
+}
+
+void
+cmd_print_table(FILE *f)
+{
+	fprintf(f, "| command | mutates | reply | what it does |\n|---|---|---|---|\n");
+	for (int i = 0; i < NCMD; i++) {
+		fprintf(f, "| `");
+		cell(f, table[i].usage);
+		fprintf(f, "` | %s | `", table[i].flags & CMD_MUTATES ? "yes" : "");
+		cell(f, table[i].reply);
+		fprintf(f, "` | %s |\n", table[i].summary);
+	}
+}
+
+int
+cmd_help(struct cmd_ctx *c)
+{
+	json_t *list = json_array();
+	for (int i = 0; i < NCMD; i++) {
+		const struct cmd_entry *e = &table[i];
+		if (c->argc >= 1 && strcmp(e->verb, c->argv[0]))
+			continue;
+		if (c->argc == 2 && strcmp(e->object, c->argv[1]))
+			continue;
+		json_t *o = json_object();
+		json_object_set_new(o, "usage", json_string(e->usage));
+		json_object_set_new(o, "summary", json_string(e->summary));
+		json_object_set_new(o, "reply", json_string(e->reply));
+		json_object_set_new(o, "mutates", json_boolean(e->flags & CMD_MUTATES));
+		json_array_append_new(list, o);
+	}
+	if (!json_array_size(list)) {
+		json_decref(list);
+		return cmd_fail(c, "unknown-command", "no command '%.60s'", c->argv[0]);
+	}
+	json_object_set_new(c->result, "commands", list);
+	return 0;
+}
+
+/* ---- helpers for handlers ---------------------------------------------- */
+
+static int
+resolve_error(struct cmd_ctx *c, int err, const char *what, const char *ref)
+{
+	if (err == ENV_STALE)
+		return cmd_fail(c, "stale-id", "%s id '%.60s' is stale: what it named is gone", what, ref);
+	return cmd_fail(c, "not-found", "no %s '%.60s'", what, ref);
+}
+
+int
+cmd_side(struct cmd_ctx *c, const char *w)
+{
+	if (!strcmp(w, "left"))
+		return 0;
+	if (!strcmp(w, "right"))
+		return 1;
+	return cmd_fail(c, "bad-argument", "left or right, not '%.20s'", w);
+}
+
+int
+cmd_figure(struct cmd_ctx *c, const char *ref)
+{
+	int slot = env_find_figure(&c->d->env, ref);
+	if (slot < 0)
+		return resolve_error(c, slot, "figure", ref);
+	return slot;
+}
+
+int
+cmd_constraint(struct cmd_ctx *c, const char *ref)
+{
+	int slot = env_find_constraint(&c->d->env, ref);
+	if (slot < 0)
+		return resolve_error(c, slot, "constraint", ref);
+	return slot;
+}
+
+const char *
+cmd_key(struct cmd_ctx *c, const char *key)
+{
+	for (int i = 0; i < c->argc; i++)
+		if (words_is_key(c->argv[i], key))
+			return c->argv[i] + strlen(key) + 1;
+	return NULL;
+}
+
+int
+cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len)
+{
+	if (!rel[0] || rel[0] == '/')
+		return cmd_fail(c, "denied", "paths are relative to the state directory");
+	for (const char *p = rel; *p; p = strchr(p, '/') ? strchr(p, '/') + 1 : p + strlen(p))
+		if (!strncmp(p, "..", 2) && (p[2] == '/' || !p[2]))
+			return cmd_fail(c, "denied", "'..' may not appear in a path");
+	char root[PATH_MAX], full[PATH_MAX], real[PATH_MAX];
+	if (!realpath(c->d->state_dir, root))
+		return cmd_fail(c, "io", "state directory: %s", strerror(errno));
+	if ((size_t)snprintf(full, sizeof full, "%s/%s", root, rel) >= sizeof full || strlen(full) >= len)
+		return cmd_fail(c, "bad-argument", "path too long");
+	/* the file itself (reading) or its directory (writing) must resolve inside */
+	char probe[PATH_MAX];
+	snprintf(probe, sizeof probe, "%s", full);
+	if (for_write) {
+		char *slash = strrchr(probe, '/');
+		*slash = 0;
+		struct stat st;
+		if (!lstat(full, &st) && S_ISLNK(st.st_mode))
+			return cmd_fail(c, "denied", "'%.60s' is a symbolic link", rel);
+	}
+	if (!realpath(probe, real))
+		return cmd_fail(c, "not-found", "'%.60s': %s", rel, strerror(errno));
+	size_t n = strlen(root);
+	if (strncmp(real, root, n) || (real[n] != '/' && real[n] != 0))
+		return cmd_fail(c, "denied", "'%.60s' leads outside the state directory", rel);
+	snprintf(dest, len, "%s", full);
+	return 0;
+}
+
+json_t *
+cmd_vec(const double *v, int n)
+{
+	json_t *a = json_array();
+	for (int i = 0; i < n; i++)
+		json_array_append_new(a, json_real(v[i]));
+	return a;
+}

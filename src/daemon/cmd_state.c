@@ -1,0 +1,255 @@
+/* cmd_state.c - files, undo and redo, settling, status and subscriptions */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "daemon/cmd.h"
+#include "daemon/session.h"
+#include "daemon/statefile.h"
+
+#define POSTURED_VERSION "0.3"
+
+int
+cmd_save_posture(struct cmd_ctx *c)
+{
+	int fig = cmd_figure(c, c->argv[0]);
+	char path[4096];
+	if (fig < 0 || cmd_path(c, c->argv[1], 1, path, sizeof path) < 0)
+		return -1;
+	char *buf = NULL;
+	size_t len = 0;
+	FILE *f = open_memstream(&buf, &len);
+	if (!f)
+		return cmd_fail(c, "internal", "out of memory");
+	session_write_posture(&c->d->env, fig, f);
+	fclose(f);
+	int rc = statefile_write(path, buf, len);
+	free(buf);
+	if (rc < 0)
+		return cmd_fail(c, "io", "%.60s: %s", c->argv[1], strerror(errno));
+	json_object_set_new(c->result, "path", json_string(c->argv[1]));
+	return 0;
+}
+
+static char *
+read_state_file(struct cmd_ctx *c, const char *rel, size_t *len)
+{
+	char path[4096];
+	if (cmd_path(c, rel, 0, path, sizeof path) < 0)
+		return NULL;
+	char *text = statefile_read(path, len);
+	if (!text)
+		cmd_fail(c, errno == ENOENT ? "not-found" : "bad-file", "%.60s: %s", rel, strerror(errno));
+	return text;
+}
+
+int
+cmd_load_posture(struct cmd_ctx *c)
+{
+	int fig = cmd_figure(c, c->argv[0]);
+	size_t len;
+	char *text = fig < 0 ? NULL : read_state_file(c, c->argv[1], &len);
+	if (!text)
+		return -1;
+	char err[300];
+	int rc = session_read_posture(&c->d->env, fig, text, len, err, sizeof err);
+	free(text);
+	if (rc < 0)
+		return cmd_fail(c, "bad-file", "%.60s: %s", c->argv[1], err);
+	c->d->env.fig[fig].ik_stale = 1; /* the root may have changed */
+	return 0;
+}
+
+int
+cmd_save_session(struct cmd_ctx *c)
+{
+	char path[4096];
+	if (cmd_path(c, c->argv[0], 1, path, sizeof path) < 0)
+		return -1;
+	size_t len;
+	char *text = session_to_string(&c->d->env, &len);
+	if (!text)
+		return cmd_fail(c, "internal", "out of memory");
+	int rc = statefile_write(path, text, len);
+	free(text);
+	if (rc < 0)
+		return cmd_fail(c, "io", "%.60s: %s", c->argv[0], strerror(errno));
+	json_object_set_new(c->result, "path", json_string(c->argv[0]));
+	return 0;
+}
+
+/* replaces the environment with one read from text; nothing changes on error */
+static int
+replace_env(struct cmd_ctx *c, const char *text, size_t len, const char *what)
+{
+	struct env *fresh = malloc(sizeof *fresh);
+	if (!fresh)
+		return cmd_fail(c, "internal", "out of memory");
+	env_init(fresh);
+	char err[300];
+	if (session_read(text, len, c->d->state_dir, c->d->library_dir, fresh, err, sizeof err) < 0) {
+		free(fresh);
+		return cmd_fail(c, "bad-file", "%s: %s", what, err);
+	}
+	env_clear(&c->d->env);
+	c->d->env = *fresh;
+	free(fresh);
+	return 0;
+}
+
+int
+cmd_load_session(struct cmd_ctx *c)
+{
+	size_t len;
+	char *text = read_state_file(c, c->argv[0], &len);
+	if (!text)
+		return -1;
+	int rc = replace_env(c, text, len, c->argv[0]);
+	free(text);
+	return rc;
+}
+
+/* pops from one stack onto the other: undo and redo are mirror images */
+static int
+step_history(struct cmd_ctx *c, struct checkpoints *from, struct checkpoints *to, const char *what)
+{
+	if (!from->n)
+		return cmd_fail(c, "nothing", "nothing to %s", what);
+	size_t now_len;
+	char *now = session_to_string(&c->d->env, &now_len);
+	if (!now)
+		return cmd_fail(c, "internal", "out of memory");
+	int top = from->n - 1;
+	if (replace_env(c, from->text[top], from->len[top], what) < 0) {
+		free(now);
+		return -1;
+	}
+	free(from->text[top]);
+	from->n--;
+	daemon_checkpoints_push(to, now, now_len);
+	json_object_set_new(c->result, from == &c->d->undo ? "undone" : "redone", json_true());
+	json_object_set_new(c->result, "remaining", json_integer(from->n));
+	return 0;
+}
+
+int
+cmd_undo(struct cmd_ctx *c)
+{
+	return step_history(c, &c->d->undo, &c->d->redo, "undo");
+}
+
+int
+cmd_redo(struct cmd_ctx *c)
+{
+	return step_history(c, &c->d->redo, &c->d->undo, "redo");
+}
+
+int
+cmd_settle(struct cmd_ctx *c)
+{
+	double frames = 600;
+	const char *f = cmd_key(c, "frames");
+	if (c->argc && !f)
+		return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[0]);
+	if (f && words_number(f, UNIT_NONE, &frames) < 0)
+		return cmd_fail(c, "bad-number", "frames: a whole number");
+	if (frames != (int)frames || frames < 1 || frames > 100000)
+		return cmd_fail(c, "bad-argument", "frames: a whole number from 1 to 100000");
+	if (!c->d->run_frame)
+		return cmd_fail(c, "internal", "no frame loop to settle with");
+	int n = 0, changed = 1;
+	/* a few quiet frames in a row: the posture has stopped changing */
+	for (int quiet = 0; n < (int)frames && quiet < 3; n++) {
+		if (c->d->run_frame(c->d, &changed) < 0)
+			return cmd_fail(c, "internal", "the frame failed");
+		quiet = changed ? 0 : quiet + 1;
+	}
+	json_object_set_new(c->result, "frames", json_integer(n));
+	json_object_set_new(c->result, "settled", json_boolean(!changed));
+	/* where every constraint stands: metres and radians from its goal */
+	struct env *e = &c->d->env;
+	json_t *res = json_array();
+	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
+		struct env_constraint *k = &e->con[i];
+		if (!k->gen)
+			continue;
+		struct env_figure *fg = &e->fig[k->fig];
+		env_sync_solver(e, k->fig);
+		double pe, oe;
+		ik_constraint_error(fg->ik, fg->model, fg->state, env_solver_index(e, i), &pe, &oe);
+		json_t *o = json_object();
+		json_object_set_new(o, "name", json_string(k->name));
+		json_object_set_new(o, "pos_error", json_real(pe));
+		json_object_set_new(o, "ori_error", json_real(oe));
+		json_array_append_new(res, o);
+	}
+	json_object_set_new(c->result, "residuals", res);
+	return 0;
+}
+
+int
+cmd_status(struct cmd_ctx *c)
+{
+	const struct daemon_stats *s = &c->d->stats;
+	json_object_set_new(c->result, "version", json_string(POSTURED_VERSION));
+	json_object_set_new(c->result, "frame", json_integer((json_int_t)s->frame));
+	json_object_set_new(c->result, "fps", json_real(s->fps));
+	json_object_set_new(c->result, "ik_us", json_real(s->ik_us));
+	json_object_set_new(c->result, "draw_us", json_real(s->draw_us));
+	json_object_set_new(c->result, "budget_us", json_integer((json_int_t)s->budget_us));
+	json_object_set_new(c->result, "clients", json_integer(s->clients));
+	json_object_set_new(c->result, "figures", json_integer(env_count(&c->d->env)));
+	json_object_set_new(c->result, "undo", json_integer(c->d->undo.n));
+	json_object_set_new(c->result, "redo", json_integer(c->d->redo.n));
+	return 0;
+}
+
+static int
+sub_kinds(struct cmd_ctx *c, unsigned *kinds)
+{
+	static const struct {
+		const char *name;
+		unsigned kind;
+	} names[] = { { "posture", SUB_POSTURE }, { "telemetry", SUB_TELEMETRY },
+		      { "message", SUB_MESSAGE }, { "frame", SUB_FRAME },
+		      { "stability", SUB_STABILITY }, { "alert", SUB_ALERT } };
+	for (size_t i = 0; i < sizeof names / sizeof *names; i++)
+		if (!strcmp(c->argv[0], names[i].name)) {
+			*kinds = names[i].kind;
+			return 0;
+		}
+	return cmd_fail(c, "bad-argument", "events are posture, telemetry, message, frame, stability or alert");
+}
+
+static int
+subscription(struct cmd_ctx *c, int on)
+{
+	unsigned kinds = 0;
+	if (sub_kinds(c, &kinds) < 0)
+		return -1;
+	if (c->client < 0 || !c->d->subscribe)
+		return cmd_fail(c, "bad-argument", "only a connected client can subscribe");
+	return c->d->subscribe(c->d, c->client, kinds, on) < 0
+		       ? cmd_fail(c, "internal", "subscription failed")
+		       : 0;
+}
+
+int
+cmd_subscribe(struct cmd_ctx *c)
+{
+	return subscription(c, 1);
+}
+
+int
+cmd_unsubscribe(struct cmd_ctx *c)
+{
+	return subscription(c, 0);
+}
+
+int
+cmd_quit(struct cmd_ctx *c)
+{
+	c->quit = 1;
+	return 0;
+}

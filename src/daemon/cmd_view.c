@@ -1,0 +1,201 @@
+/* cmd_view.c - views, cameras, and pictures on request */
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "daemon/cmd.h"
+#include "daemon/daemon.h"
+#include "draw/sink.h"
+#include "daemon/statefile.h"
+
+static int
+read_point(struct cmd_ctx *c, const char *key, double dest[3])
+{
+	const char *v = cmd_key(c, key);
+	if (v && words_list(v, UNIT_LENGTH, 3, dest) < 0)
+		return cmd_fail(c, "bad-number", "%s=X,Y,Z: three lengths", key);
+	return 0;
+}
+
+static int
+read_size(struct cmd_ctx *c, const char *key, int *dest)
+{
+	const char *v = cmd_key(c, key);
+	double d;
+	int max = !strcmp(key, "width") ? VIEW_MAX_W : VIEW_MAX_H;
+	if (v && (words_number(v, UNIT_NONE, &d) < 0 || d != (int)d || d < 16 || d > max))
+		return cmd_fail(c, "bad-number", "%s: a whole number of pixels from 16 to %d", key, max);
+	if (v)
+		*dest = (int)d;
+	return 0;
+}
+
+static int
+only_keys(struct cmd_ctx *c, int from, const char *const *keys, int n)
+{
+	for (int i = from; i < c->argc; i++) {
+		int ok = 0;
+		for (int k = 0; k < n; k++)
+			ok |= words_is_key(c->argv[i], keys[k]);
+		if (!ok)
+			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
+	}
+	return 0;
+}
+
+static int
+aim_ok(struct cmd_ctx *c, const double eye[3], const double target[3])
+{
+	double d[3] = { target[0] - eye[0], target[1] - eye[1], target[2] - eye[2] };
+	if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 1e-6)
+		return cmd_fail(c, "bad-argument", "the eye and the target coincide");
+	return 0;
+}
+
+int
+cmd_add_view(struct cmd_ctx *c)
+{
+	static const char *const keys[] = { "width", "height", "eye", "target", "icons" };
+	struct env *e = &c->d->env;
+	const char *name = c->argv[0];
+	if (!words_is_name(name))
+		return cmd_fail(c, "bad-argument", "a view's name: letters, digits, '_'");
+	if (env_find_view(e, name) >= 0)
+		return cmd_fail(c, "exists", "a view named '%s' exists", name);
+	struct env_view v = { .used = 1, .width = 640, .height = 480, .icons = 1,
+			      .eye = { 2.2, 1.5, 3.2 }, .target = { 0, 0.95, 0 } };
+	snprintf(v.name, sizeof v.name, "%s", name);
+	const char *icons = cmd_key(c, "icons");
+	if (only_keys(c, 1, keys, 5) < 0 || read_size(c, "width", &v.width) < 0 ||
+	    read_size(c, "height", &v.height) < 0 || read_point(c, "eye", v.eye) < 0 ||
+	    read_point(c, "target", v.target) < 0 || aim_ok(c, v.eye, v.target) < 0)
+		return -1;
+	if (icons && strcmp(icons, "0") && strcmp(icons, "1"))
+		return cmd_fail(c, "bad-argument", "icons=0|1");
+	v.icons = !icons || !strcmp(icons, "1");
+	for (int i = 0; i < ENV_MAX_VIEWS; i++)
+		if (!e->view[i].used) {
+			e->view[i] = v;
+			json_object_set_new(c->result, "view", json_string(name));
+			return 0;
+		}
+	return cmd_fail(c, "limit", "%d views at most", ENV_MAX_VIEWS);
+}
+
+static int
+view_of(struct cmd_ctx *c, const char *name)
+{
+	int v = env_find_view(&c->d->env, name);
+	if (v < 0)
+		cmd_fail(c, "not-found", "no view '%.60s'", name);
+	return v;
+}
+
+int
+cmd_set_camera(struct cmd_ctx *c)
+{
+	static const char *const keys[] = { "eye", "target" };
+	int v = view_of(c, c->argv[0]);
+	if (v < 0 || only_keys(c, 1, keys, 2) < 0)
+		return -1;
+	struct env_view *w = &c->d->env.view[v];
+	double eye[3], target[3];
+	if (!cmd_key(c, "eye") || !cmd_key(c, "target"))
+		return cmd_fail(c, "arity", "set camera VIEW eye=X,Y,Z target=X,Y,Z");
+	if (read_point(c, "eye", eye) < 0 || read_point(c, "target", target) < 0 ||
+	    aim_ok(c, eye, target) < 0)
+		return -1;
+	memcpy(w->eye, eye, sizeof eye);
+	memcpy(w->target, target, sizeof target);
+	return 0;
+}
+
+int
+cmd_delete_view(struct cmd_ctx *c)
+{
+	int v = view_of(c, c->argv[0]);
+	if (v < 0)
+		return -1;
+	memset(&c->d->env.view[v], 0, sizeof c->d->env.view[v]);
+	return 0;
+}
+
+int
+cmd_list_views(struct cmd_ctx *c)
+{
+	json_t *list = json_array();
+	for (int i = 0; i < ENV_MAX_VIEWS; i++) {
+		const struct env_view *v = &c->d->env.view[i];
+		if (!v->used)
+			continue;
+		json_t *o = json_object();
+		json_object_set_new(o, "name", json_string(v->name));
+		json_object_set_new(o, "width", json_integer(v->width));
+		json_object_set_new(o, "height", json_integer(v->height));
+		json_object_set_new(o, "eye", cmd_vec(v->eye, 3));
+		json_object_set_new(o, "target", cmd_vec(v->target, 3));
+		json_object_set_new(o, "icons", json_boolean(v->icons));
+		json_array_append_new(list, o);
+	}
+	json_object_set_new(c->result, "views", list);
+	return 0;
+}
+
+static char *
+base64(const uint8_t *p, size_t n)
+{
+	static const char a[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+	char *out = malloc(4 * ((n + 2) / 3) + 1), *o = out;
+	if (!out)
+		return NULL;
+	for (size_t i = 0; i < n; i += 3) {
+		uint32_t v = (uint32_t)p[i] << 16 | (i + 1 < n ? (uint32_t)p[i + 1] << 8 : 0) |
+			     (i + 2 < n ? p[i + 2] : 0);
+		*o++ = a[v >> 18 & 63];
+		*o++ = a[v >> 12 & 63];
+		*o++ = i + 1 < n ? a[v >> 6 & 63] : '=';
+		*o++ = i + 2 < n ? a[v & 63] : '=';
+	}
+	*o = 0;
+	return out;
+}
+
+int
+cmd_render_view(struct cmd_ctx *c)
+{
+	static const char *const keys[] = { "to" };
+	int v = view_of(c, c->argv[0]);
+	if (v < 0 || only_keys(c, 1, keys, 1) < 0)
+		return -1;
+	const char *to = cmd_key(c, "to");
+	char path[4096], err[256];
+	if (to && cmd_path(c, to, 1, path, sizeof path) < 0)
+		return -1;
+	if (!c->d->render_view)
+		return cmd_fail(c, "internal", "this daemon cannot render");
+	const struct frame *f;
+	if (c->d->render_view(c->d, v, &f, err, sizeof err) < 0)
+		return cmd_fail(c, "internal", "rendering failed: %s", err);
+	static struct sink_png_encoder enc; /* reused: the loop is single-threaded */
+	static int ready;
+	if (!ready) {
+		sink_png_encoder_init(&enc);
+		ready = 1;
+	}
+	if (sink_png_encode(&enc, f, err, sizeof err) < 0)
+		return cmd_fail(c, "internal", "PNG: %s", err);
+	if (to) {
+		if (statefile_write(path, enc.data, enc.len) < 0)
+			return cmd_fail(c, "io", "%.60s: %s", to, strerror(errno));
+		json_object_set_new(c->result, "path", json_string(to));
+	} else {
+		char *b64 = base64(enc.data, enc.len);
+		if (!b64)
+			return cmd_fail(c, "internal", "out of memory");
+		json_object_set_new(c->result, "png", json_string(b64));
+		free(b64);
+	}
+	json_object_set_new(c->result, "width", json_integer(f->width));
+	json_object_set_new(c->result, "height", json_integer(f->height));
+	return 0;
+}

@@ -1,0 +1,67 @@
+/*
+ * daemon.h - what the command handlers may reach besides the environment:
+ * the state directory, undo history, frame statistics, and the loop's
+ * services (running frames for `settle`, client subscriptions).
+ */
+#ifndef POSTURE_DAEMON_H
+#define POSTURE_DAEMON_H
+
+#include <stdint.h>
+
+#include "pose/env.h"
+#include "draw/frame.h"
+
+#define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
+#define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
+#define VIEW_MAX_H 1200
+
+/* a bounded stack of session texts */
+struct checkpoints {
+	char *text[DAEMON_UNDO_MAX];
+	size_t len[DAEMON_UNDO_MAX];
+	int n;
+};
+
+struct daemon_stats {
+	uint64_t frame;    /* frames run */
+	double fps;        /* measured over the last second */
+	double ik_us;      /* solver time in the last frame */
+	double draw_us;    /* drawing time in the last frame */
+	uint64_t budget_us; /* the solver's budget in the last frame */
+	int clients;
+	int iterations;    /* solver iterations in the last frame */
+	int time_cut;      /* 1 when the time limit cut the last solve */
+	int step_cut;      /* 1 when the step factor shortened a goal */
+};
+
+enum sub_kind {
+	SUB_POSTURE = 1 << 0,
+	SUB_TELEMETRY = 1 << 1,
+	SUB_MESSAGE = 1 << 2,
+	SUB_FRAME = 1 << 3,
+	SUB_STABILITY = 1 << 4, /* every frame: support polygon, balance point, margin */
+	SUB_ALERT = 1 << 5,     /* the stability margin crossing its threshold */
+};
+
+struct daemon {
+	struct env env;
+	char state_dir[4096];
+	char library_dir[4096]; /* shipped figure files, named "lib:NAME"; empty: none */
+	struct checkpoints undo, redo;
+	struct daemon_stats stats;
+	/* the loop's services; NULL when absent (tools, tests) */
+	void *loop;
+	int (*run_frame)(struct daemon *d, int *changed); /* one frame with a virtual clock */
+	int (*subscribe)(struct daemon *d, int client, unsigned kinds, int on);
+	/* renders view v now; the frame stays valid until the next rendering */
+	int (*render_view)(struct daemon *d, int v, const struct frame **dest, char *err,
+			   size_t errlen);
+	char message[256]; /* the message line under the pictures (§1.7) */
+};
+
+/* frees the undo and redo texts */
+void daemon_checkpoints_clear(struct checkpoints *c);
+/* pushes a text (taking ownership); drops the oldest when full */
+void daemon_checkpoints_push(struct checkpoints *c, char *text, size_t len);
+
+#endif

@@ -1,0 +1,328 @@
+/* journal.c - the write-ahead record of state changes, and snapshots */
+#include "daemon/journal.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <inttypes.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "daemon/cmd.h"
+#include "daemon/session.h"
+#include "daemon/statefile.h"
+
+static int
+say(char *err, size_t errlen, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(err, errlen, fmt, ap);
+	va_end(ap);
+	return -1;
+}
+
+static int
+write_all(int fd, const char *p, size_t n)
+{
+	while (n) {
+		ssize_t w = write(fd, p, n);
+		if (w < 0 && errno == EINTR)
+			continue;
+		if (w < 0)
+			return -1;
+		p += w;
+		n -= (size_t)w;
+	}
+	return 0;
+}
+
+static uint64_t figure_hash(const struct env_figure *f);
+
+/* the current posture hashes, so only later solver changes are recorded */
+static void
+note_postures(struct journal *j, const struct daemon *d)
+{
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		const struct env_figure *f = &d->env.fig[i];
+		j->posture_gen[i] = f->gen;
+		j->posture_hash[i] = f->gen ? figure_hash(f) : 0;
+	}
+}
+
+/* ---- snapshots ------------------------------------------------------------ */
+
+static void
+write_checkpoints(FILE *f, const char *name, const struct checkpoints *c)
+{
+	fprintf(f, "%s %d\n", name, c->n);
+	for (int i = 0; i < c->n; i++) {
+		fprintf(f, "checkpoint %zu\n", c->len[i]);
+		fwrite(c->text[i], 1, c->len[i], f);
+	}
+}
+
+int
+journal_snapshot(struct journal *j, const struct daemon *d, int force)
+{
+	if (!force && j->since_snap < JOURNAL_SNAPSHOT_RECORDS)
+		return 0;
+	char *buf = NULL;
+	size_t len = 0;
+	FILE *f = open_memstream(&buf, &len);
+	if (!f)
+		return -1;
+	fprintf(f, "snapshot 1 %" PRIu64 "\n", j->seq);
+	session_write(&d->env, f);
+	write_checkpoints(f, "undo", &d->undo);
+	write_checkpoints(f, "redo", &d->redo);
+	int bad = ferror(f);
+	fclose(f);
+	if (bad || statefile_write(j->snap_path, buf, len) < 0) {
+		free(buf);
+		return -1;
+	}
+	free(buf);
+	/* the snapshot holds everything: the records can go */
+	if (ftruncate(j->fd, 0) < 0 || fsync(j->fd) < 0)
+		return -1;
+	j->since_snap = 0;
+	return 0;
+}
+
+/* reads "checkpoint LEN\n" + LEN bytes entries; returns the rest or NULL */
+static const char *
+read_checkpoints(const char *p, const char *end, const char *name, struct checkpoints *dest)
+{
+	int n;
+	char word[16];
+	if (sscanf(p, "%15s %d\n", word, &n) != 2 || strcmp(word, name) || n < 0 || n > DAEMON_UNDO_MAX)
+		return NULL;
+	p = memchr(p, '\n', (size_t)(end - p));
+	if (!p)
+		return NULL;
+	p++;
+	for (int i = 0; i < n; i++) {
+		size_t len;
+		if (sscanf(p, "checkpoint %zu\n", &len) != 1)
+			return NULL;
+		p = memchr(p, '\n', (size_t)(end - p));
+		if (!p || len > (size_t)(end - p - 1))
+			return NULL;
+		p++;
+		char *text = malloc(len + 1);
+		if (!text)
+			return NULL;
+		memcpy(text, p, len);
+		text[len] = 0;
+		daemon_checkpoints_push(dest, text, len);
+		p += len;
+	}
+	return p;
+}
+
+static int
+load_snapshot(struct journal *j, struct daemon *d, uint64_t *snap_seq, char *err, size_t errlen)
+{
+	size_t len;
+	char *text = statefile_read(j->snap_path, &len);
+	*snap_seq = 0;
+	if (!text)
+		return errno == ENOENT ? 0 : say(err, errlen, "%s: %s", j->snap_path, strerror(errno));
+	const char *end = text + len, *body = memchr(text, '\n', len);
+	if (!body || sscanf(text, "snapshot 1 %" SCNu64, snap_seq) != 1) {
+		free(text);
+		return say(err, errlen, "%s: not a snapshot", j->snap_path);
+	}
+	body++;
+	/* the session runs to its "end" line; the checkpoints follow */
+	const char *stop = strstr(body, "\nend\n");
+	if (!stop) {
+		free(text);
+		return say(err, errlen, "%s: the session has no end", j->snap_path);
+	}
+	stop += 5;
+	char msg[300];
+	if (session_read(body, (size_t)(stop - body), d->state_dir, d->library_dir, &d->env, msg,
+			 sizeof msg) < 0) {
+		free(text);
+		return say(err, errlen, "%s: %s", j->snap_path, msg);
+	}
+	const char *p = read_checkpoints(stop, end, "undo", &d->undo);
+	if (!p || !read_checkpoints(p, end, "redo", &d->redo)) {
+		free(text);
+		return say(err, errlen, "%s: bad undo history", j->snap_path);
+	}
+	free(text);
+	return 0;
+}
+
+/* ---- recovery ------------------------------------------------------------- */
+
+static int
+replay(struct journal *j, struct daemon *d, uint64_t snap_seq, char *err, size_t errlen)
+{
+	size_t len;
+	char *text = statefile_read(j->path, &len);
+	if (!text)
+		return errno == ENOENT ? 0 : say(err, errlen, "%s: %s", j->path, strerror(errno));
+	const char *p = text, *end = text + len;
+	size_t good = 0; /* bytes of whole records */
+	while (p < end) {
+		const char *nl = memchr(p, '\n', (size_t)(end - p));
+		if (!nl) /* a torn last record: it was never acknowledged */
+			break;
+		uint64_t seq;
+		char kind;
+		int off = 0;
+		if (sscanf(p, "%" SCNu64 " %c %n", &seq, &kind, &off) != 2 || !off || p + off > nl) {
+			free(text);
+			return say(err, errlen, "%s: byte %zu: not a journal record", j->path, good);
+		}
+		const char *body = p + off;
+		size_t blen = (size_t)(nl - body);
+		if (seq > snap_seq) {
+			if (kind == 'C') {
+				struct cmd_outcome out;
+				cmd_run(d, -1, body, blen, &out);
+				if (!out.ok)
+					fprintf(stderr, "postured: journal record %" PRIu64 " failed on replay: %s\n",
+						seq, out.json ? out.json : "");
+				free(out.json);
+			} else if (kind == 'P') {
+				char msg[300];
+				if (session_apply_line(&d->env, body, blen, msg, sizeof msg) < 0)
+					fprintf(stderr, "postured: journal record %" PRIu64 ": %s\n", seq, msg);
+			}
+		}
+		j->seq = seq;
+		j->since_snap++;
+		p = nl + 1;
+		good = (size_t)(p - text);
+	}
+	free(text);
+	if (good < len && ftruncate(j->fd, (off_t)good) < 0)
+		return say(err, errlen, "%s: cannot drop a torn record: %s", j->path, strerror(errno));
+	return 0;
+}
+
+int
+journal_open(struct journal *j, struct daemon *d, char *err, size_t errlen)
+{
+	memset(j, 0, sizeof *j);
+	snprintf(j->path, sizeof j->path, "%s/journal", d->state_dir);
+	snprintf(j->snap_path, sizeof j->snap_path, "%s/snapshot", d->state_dir);
+	j->fd = open(j->path, O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW, 0640);
+	if (j->fd < 0)
+		return say(err, errlen, "%s: %s", j->path, strerror(errno));
+	uint64_t snap_seq;
+	if (load_snapshot(j, d, &snap_seq, err, errlen) < 0 || replay(j, d, snap_seq, err, errlen) < 0)
+		return -1;
+	if (j->seq < snap_seq)
+		j->seq = snap_seq;
+	note_postures(j, d);
+	return 0;
+}
+
+static int
+record(struct journal *j, char kind, const char *body, size_t len)
+{
+	char head[32];
+	int n = snprintf(head, sizeof head, "%" PRIu64 " %c ", j->seq + 1, kind);
+	/* one write for the whole record, so a crash tears at most the last one */
+	char *buf = malloc((size_t)n + len + 1);
+	if (!buf)
+		return -1;
+	memcpy(buf, head, (size_t)n);
+	memcpy(buf + n, body, len);
+	buf[(size_t)n + len] = '\n';
+	int rc = write_all(j->fd, buf, (size_t)n + len + 1);
+	free(buf);
+	if (rc == 0) {
+		j->seq++;
+		j->since_snap++;
+	}
+	return rc;
+}
+
+/* a figure's posture, and its behaviours' state and goals, as one number */
+static uint64_t
+figure_hash(const struct env_figure *f)
+{
+	uint64_t h = state_hash(f->model, f->state);
+	if (!f->behave)
+		return h;
+	double v[256];
+	int n = behave_pack(f->behave, v, 256);
+	const unsigned char *p = (const unsigned char *)v;
+	for (size_t i = 0; i < sizeof *v * (size_t)n; i++)
+		h = (h ^ p[i]) * 1099511628211ull;
+	for (int k = 0; k < BEHAVE_NCON; k++) {
+		const struct ik_constraint_def *d = behave_def(f->behave, f->ik, k);
+		const unsigned char *q = (const unsigned char *)&d->goal_xf;
+		for (size_t i = 0; i < sizeof d->goal_xf; i++)
+			h = (h ^ q[i]) * 1099511628211ull;
+		h = (h ^ (unsigned)d->enabled) * 1099511628211ull;
+	}
+	return h;
+}
+
+int
+journal_postures(struct journal *j, const struct daemon *d)
+{
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		const struct env_figure *f = &d->env.fig[i];
+		if (!f->gen)
+			continue;
+		uint64_t h = figure_hash(f);
+		if (j->posture_gen[i] == f->gen && j->posture_hash[i] == h)
+			continue;
+		char *buf = NULL;
+		size_t len = 0;
+		FILE *m = open_memstream(&buf, &len);
+		if (!m)
+			return -1;
+		session_write_figure_posture(&d->env, i, m);
+		fclose(m);
+		/* one record a statement: root, q, and a behaving figure's state */
+		int rc = 0;
+		for (char *line = buf, *nl; rc == 0 && line < buf + len; line = nl + 1) {
+			nl = memchr(line, '\n', (size_t)(buf + len - line));
+			if (!nl)
+				break;
+			rc = record(j, 'P', line, (size_t)(nl - line));
+		}
+		free(buf);
+		if (rc)
+			return -1;
+		j->posture_gen[i] = f->gen;
+		j->posture_hash[i] = h;
+	}
+	return 0;
+}
+
+int
+journal_command(struct journal *j, const struct daemon *d, const char *line, size_t len)
+{
+	if (record(j, 'C', line, len) < 0)
+		return -1;
+	/* replaying the command reproduces its postures: no P records for them */
+	note_postures(j, d);
+	return 0;
+}
+
+int
+journal_sync(struct journal *j)
+{
+	return fdatasync(j->fd);
+}
+
+void
+journal_close(struct journal *j)
+{
+	if (j->fd >= 0)
+		close(j->fd);
+	j->fd = -1;
+}

@@ -1,0 +1,53 @@
+/*
+ * journal.h - nothing lost: every state change is on disk before the client
+ * hears of it.
+ *
+ * The journal is an append-only text file of numbered records: "C line"
+ * for a state-changing command, "P statement" for a posture the solver
+ * reached between commands (the session's root and q statements, 17
+ * digits). A snapshot (the session, the undo and redo checkpoints and the
+ * number of the last record it includes) bounds the journal: after it is
+ * safely renamed into place the journal is emptied, and records it already
+ * includes are skipped on recovery, so a crash between the two is harmless.
+ * A torn last record (a crash mid-write, never acknowledged) is dropped.
+ */
+#ifndef POSTURE_JOURNAL_H
+#define POSTURE_JOURNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "daemon/daemon.h"
+
+#define JOURNAL_SNAPSHOT_RECORDS 2000 /* snapshot after this many records */
+
+struct journal {
+	int fd;
+	char path[4200], snap_path[4200];
+	uint64_t seq;        /* the last record written */
+	uint64_t since_snap; /* records since the last snapshot */
+	uint64_t posture_hash[ENV_MAX_FIGURES]; /* postures as the journal knows them */
+	uint32_t posture_gen[ENV_MAX_FIGURES];
+};
+
+/*
+ * Opens the journal in state_dir and brings d to the last recorded state
+ * (snapshot, then records). Returns 0, or -1 with a message in err.
+ */
+int journal_open(struct journal *j, struct daemon *d, char *err, size_t errlen);
+
+/* records a state-changing command line; 0 or -1 (errno) */
+int journal_command(struct journal *j, const struct daemon *d, const char *line, size_t len);
+
+/* records the postures the solver changed since the journal last saw them */
+int journal_postures(struct journal *j, const struct daemon *d);
+
+/* flushes to disk: call before sending a reply that follows records */
+int journal_sync(struct journal *j);
+
+/* writes a snapshot and empties the journal when it has grown (or force) */
+int journal_snapshot(struct journal *j, const struct daemon *d, int force);
+
+void journal_close(struct journal *j);
+
+#endif

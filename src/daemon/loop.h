@@ -1,0 +1,28 @@
+/*
+ * loop.h - the daemon's one thread: poll over sockets, signals and the
+ * frame timer; each frame applies queued commands, solves the constraints
+ * within the frame's budget (§4.7.2) and publishes events (Figure 5.1).
+ */
+#ifndef POSTURE_LOOP_H
+#define POSTURE_LOOP_H
+
+#include "daemon/daemon.h"
+#include "daemon/journal.h"
+#include "daemon/server.h"
+
+struct loop_config {
+	const char *socket_path;
+	const char *state_dir;
+	const char *frames_dir; /* NULL: no frames written */
+	double fps;
+	int tcp_port;
+	const char *token;
+	const char *init_file; /* commands for a first start, NULL: none */
+	const char *library_dir; /* shipped figure files, NULL: none */
+	const char *fb_device;   /* a framebuffer for the first view, NULL: none */
+};
+
+/* runs until SIGTERM or SIGINT; returns the process exit status */
+int loop_run(const struct loop_config *cfg);
+
+#endif

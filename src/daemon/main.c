@@ -1,0 +1,197 @@
+/* main.c - postured: flags and config file -> loop_run(); nothing else */
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "daemon/cmd.h"
+#include "daemon/loop.h"
+
+static const char usage[] =
+	"usage: postured [OPTIONS]\n"
+	"\n"
+	"The posture daemon: holds figures and their constraints, solves them every frame,\n"
+	"and serves clients over a Unix socket (proto/PROTOCOL.md).\n"
+	"\n"
+	"  --socket PATH      the Unix socket (default $XDG_RUNTIME_DIR/posture/postured.sock,\n"
+	"                     else /tmp/posture-UID/postured.sock); created mode 0660\n"
+	"  --state-dir DIR    journal, snapshots, posture and session files (default\n"
+	"                     $XDG_STATE_HOME/posture, else ~/.local/state/posture)\n"
+	"  --frames DIR       where rendered frames go, one DIR/VIEW.png per view,\n"
+	"                     replaced atomically at most 10 times a second (default: none)\n"
+	"  --fb DEVICE        also show the first view on a Linux framebuffer (/dev/fbN)\n"
+	"  --fps N            frame rate of the loop (default 60)\n"
+	"  --tcp PORT         also listen on 127.0.0.1:PORT (needs --token)\n"
+	"  --token TOKEN      the token TCP clients must send first (auth TOKEN)\n"
+	"  --init FILE        commands to run when the state is empty (a first start)\n"
+	"  --library DIR      shipped figure files, loaded as 'load figure lib:NAME'\n"
+	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
+	"  --protocol-table   print the command table of PROTOCOL.md and exit\n"
+	"  --help             this text\n"
+	"\n"
+	"Signals: SIGTERM and SIGINT stop it cleanly (journal flushed, snapshot written).\n"
+	"Under systemd (Type=notify) it reports READY=1 when listening and pings the watchdog.\n";
+
+struct settings {
+	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
+	char fb[PATH_MAX], token[128];
+	double fps;
+	int tcp;
+};
+
+static int
+set(struct settings *s, const char *key, const char *val)
+{
+	char *end;
+	if (!strcmp(key, "socket"))
+		snprintf(s->socket, sizeof s->socket, "%s", val);
+	else if (!strcmp(key, "state-dir"))
+		snprintf(s->state_dir, sizeof s->state_dir, "%s", val);
+	else if (!strcmp(key, "frames"))
+		snprintf(s->frames, sizeof s->frames, "%s", val);
+	else if (!strcmp(key, "fb"))
+		snprintf(s->fb, sizeof s->fb, "%s", val);
+	else if (!strcmp(key, "library"))
+		snprintf(s->library, sizeof s->library, "%s", val);
+	else if (!strcmp(key, "init"))
+		snprintf(s->init, sizeof s->init, "%s", val);
+	else if (!strcmp(key, "token"))
+		snprintf(s->token, sizeof s->token, "%s", val);
+	else if (!strcmp(key, "fps")) {
+		s->fps = strtod(val, &end);
+		if (*end || !(s->fps >= 1 && s->fps <= 1000)) {
+			fprintf(stderr, "postured: fps must be a number from 1 to 1000\n");
+			return -1;
+		}
+	} else if (!strcmp(key, "tcp")) {
+		long p = strtol(val, &end, 10);
+		if (*end || p < 1 || p > 65535) {
+			fprintf(stderr, "postured: tcp must be a port from 1 to 65535\n");
+			return -1;
+		}
+		s->tcp = (int)p;
+	} else {
+		fprintf(stderr, "postured: unknown setting '%s'\n", key);
+		return -1;
+	}
+	return 0;
+}
+
+static int
+read_config(struct settings *s, const char *path)
+{
+	FILE *f = fopen(path, "r");
+	if (!f) {
+		fprintf(stderr, "postured: %s: %s\n", path, strerror(errno));
+		return -1;
+	}
+	char line[4200];
+	int n = 0, rc = 0;
+	while (rc == 0 && fgets(line, sizeof line, f)) {
+		n++;
+		char *p = line, *eq;
+		while (*p == ' ' || *p == '\t')
+			p++;
+		if (*p == '#' || *p == '\n' || !*p)
+			continue;
+		p[strcspn(p, "\r\n")] = 0;
+		if (!(eq = strchr(p, '='))) {
+			fprintf(stderr, "postured: %s:%d: expected key = value\n", path, n);
+			rc = -1;
+			break;
+		}
+		char *k = p, *v = eq + 1, *ke = eq;
+		while (ke > k && (ke[-1] == ' ' || ke[-1] == '\t'))
+			ke--;
+		*ke = 0;
+		while (*v == ' ' || *v == '\t')
+			v++;
+		if (set(s, k, v) < 0) {
+			fprintf(stderr, "postured: in %s:%d\n", path, n);
+			rc = -1;
+		}
+	}
+	fclose(f);
+	return rc;
+}
+
+/* mkdir -p with a mode for the directories it creates */
+static int
+make_dirs(const char *path, mode_t mode)
+{
+	char buf[PATH_MAX];
+	snprintf(buf, sizeof buf, "%s", path);
+	for (char *p = buf + 1; *p; p++) {
+		if (*p != '/')
+			continue;
+		*p = 0;
+		if (mkdir(buf, mode) < 0 && errno != EEXIST)
+			return -1;
+		*p = '/';
+	}
+	return mkdir(buf, mode) < 0 && errno != EEXIST ? -1 : 0;
+}
+
+static void
+defaults(struct settings *s)
+{
+	const char *run = getenv("XDG_RUNTIME_DIR"), *st = getenv("XDG_STATE_HOME"),
+		   *home = getenv("HOME");
+	if (run && run[0])
+		snprintf(s->socket, sizeof s->socket, "%s/posture/postured.sock", run);
+	else
+		snprintf(s->socket, sizeof s->socket, "/tmp/posture-%ld/postured.sock", (long)getuid());
+	if (st && st[0])
+		snprintf(s->state_dir, sizeof s->state_dir, "%s/posture", st);
+	else
+		snprintf(s->state_dir, sizeof s->state_dir, "%s/.local/state/posture", home ? home : ".");
+	s->fps = 60;
+}
+
+int
+main(int argc, char **argv)
+{
+	struct settings s = { 0 };
+	defaults(&s);
+	/* the config file first, so flags win */
+	for (int i = 1; i < argc; i++)
+		if (!strcmp(argv[i], "--config") && i + 1 < argc && read_config(&s, argv[i + 1]) < 0)
+			return 2;
+	for (int i = 1; i < argc; i++) {
+		const char *a = argv[i];
+		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+			fputs(usage, stdout);
+			return 0;
+		}
+		if (!strcmp(a, "--protocol-table")) {
+			cmd_print_table(stdout);
+			return 0;
+		}
+		if (strncmp(a, "--", 2) || i + 1 >= argc) {
+			fprintf(stderr, "postured: unknown or incomplete option '%s'\n%s", a, usage);
+			return 2;
+		}
+		if (strcmp(a, "--config") && set(&s, a + 2, argv[i + 1]) < 0)
+			return 2;
+		i++;
+	}
+	char sockdir[PATH_MAX];
+	snprintf(sockdir, sizeof sockdir, "%s", s.socket);
+	char *slash = strrchr(sockdir, '/');
+	if (slash && slash != sockdir)
+		*slash = 0;
+	if (make_dirs(s.state_dir, 0700) < 0 || (slash && make_dirs(sockdir, 0700) < 0) ||
+	    (s.frames[0] && make_dirs(s.frames, 0750) < 0)) {
+		fprintf(stderr, "postured: cannot create a directory: %s\n", strerror(errno));
+		return 1;
+	}
+	fprintf(stderr, "postured: socket %s, state %s, frames %s, %.0f fps%s\n", s.socket,
+		s.state_dir, s.frames[0] ? s.frames : "(none)", s.fps, s.tcp ? ", tcp on" : "");
+	struct loop_config cfg = { s.socket, s.state_dir, s.frames[0] ? s.frames : NULL, s.fps,
+				   s.tcp, s.token, s.init[0] ? s.init : NULL,
+				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL };
+	return loop_run(&cfg);
+}

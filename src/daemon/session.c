@@ -1,0 +1,696 @@
+/* session.c - sessions and postures as versioned text */
+#include "daemon/session.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pose/attach.h"
+#include "figure/figure.h"
+#include "figure/kin.h"
+#include "daemon/words.h"
+
+static const char *const pos_names[] = { "none", "point", "line", "plane" };
+static const char *const ori_names[] = { "none", "frame", "direction", "aim" };
+
+static void
+write_xform(FILE *f, const struct xform *x)
+{
+	for (int i = 0; i < 3; i++)
+		fprintf(f, "%s%.17g", i ? "," : "", x->p[i]);
+	for (int i = 0; i < 9; i++)
+		fprintf(f, ",%.17g", x->r[i]);
+}
+
+static void
+write_vec(FILE *f, const double *v, int n)
+{
+	for (int i = 0; i < n; i++)
+		fprintf(f, "%s%.17g", i ? "," : "", v[i]);
+}
+
+static void
+write_figure_posture(const struct env_figure *fg, FILE *f)
+{
+	const struct model *m = fg->model;
+	const struct state *s = fg->state;
+	char site[2 * MODEL_NAME_MAX];
+	fprintf(f, "root %s %s ", fg->name, model_site_fullname(m, s->root_site, site, sizeof site));
+	write_xform(f, &s->root_xf);
+	/* one comma-separated word: a figure may have more dofs than a line has words */
+	fprintf(f, "\nq %s ", fg->name);
+	if (m->ndof)
+		write_vec(f, s->q, m->ndof);
+	else
+		fprintf(f, "-");
+	fprintf(f, "\n");
+}
+
+/* the fields of a constraint's definition, after its head */
+static void
+write_def(FILE *f, const struct model *m, const struct ik_constraint_def *d)
+{
+	char site[2 * MODEL_NAME_MAX];
+	fprintf(f, " enabled=%d effector=%s", d->enabled,
+		model_site_fullname(m, d->effector_site, site, sizeof site));
+	fprintf(f, " effoff=");
+	write_xform(f, &d->effector_offset);
+	fprintf(f, " goalsite=%s",
+		d->goal_site >= 0 ? model_site_fullname(m, d->goal_site, site, sizeof site) : "-");
+	fprintf(f, " goal=");
+	write_xform(f, &d->goal_xf);
+	fprintf(f, " pos=%s ori=%s axis=", pos_names[d->pos], ori_names[d->ori]);
+	write_vec(f, d->goal_axis, 3);
+	fprintf(f, " effaxis=");
+	write_vec(f, d->effector_axis, 3);
+	fprintf(f, " posweight=%.17g weight=%.17g start=%s group=%d com=%d\n", d->pos_weight,
+		d->weight, d->start_joint >= 0 ? m->jnt_name[d->start_joint] : "-", d->group,
+		d->com_effector);
+}
+
+/* a behaving figure: its packed parameters and state, then its constraints */
+static void
+write_behave(const struct env_figure *fg, FILE *f)
+{
+	double v[256];
+	int n = behave_pack(fg->behave, v, 256);
+	fprintf(f, "behave %s ", fg->name);
+	write_vec(f, v, n);
+	fprintf(f, "\n");
+	for (int k = 0; k < BEHAVE_NCON; k++) {
+		fprintf(f, "bdef %s %d", fg->name, k);
+		write_def(f, fg->model, behave_def(fg->behave, fg->ik, k));
+	}
+}
+
+int
+session_write(const struct env *e, FILE *f)
+{
+	fprintf(f, "session %d\nnext_gen %u\n", SESSION_VERSION, e->next_gen);
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		const struct env_figure *fg = &e->fig[i];
+		if (!fg->gen)
+			continue;
+		if (fg->is_human)
+			fprintf(f, "figure %s slot=%d gen=%u human stature=%.17g mass=%.17g sex=%s\n",
+				fg->name, i, fg->gen, fg->human.stature, fg->human.mass,
+				fg->human.sex == HUMAN_FEMALE ? "female" : "male");
+		else
+			fprintf(f, "figure %s slot=%d gen=%u file \"%s\"\n", fg->name, i, fg->gen,
+				fg->path);
+		write_figure_posture(fg, f);
+	}
+	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
+		const struct env_constraint *c = &e->con[i];
+		if (!c->gen)
+			continue;
+		const struct env_figure *fg = &e->fig[c->fig];
+		const struct model *m = fg->model;
+		fprintf(f, "constraint %s slot=%d gen=%u figure=%s", c->name, i, c->gen, fg->name);
+		write_def(f, m, &c->def);
+	}
+	for (int i = 0; i < ENV_MAX_FIGURES; i++)
+		if (e->fig[i].gen && e->fig[i].behave)
+			write_behave(&e->fig[i], f);
+	for (int i = 0; i < ENV_MAX_ATTACH; i++) {
+		const struct env_attach *a = &e->att[i];
+		if (!a->used)
+			continue;
+		fprintf(f, "attach %s limb=%s side=%s kind=%s object=%s segment=%s rel=",
+			e->fig[a->fig].name, a->limb == ATTACH_HAND ? "hand" : "foot",
+			a->side ? "right" : "left", a->kind == ATTACH_GRAB ? "grab" : "local",
+			e->fig[a->obj].name, e->fig[a->obj].model->seg_name[a->seg]);
+		write_xform(f, &a->rel);
+		fprintf(f, "\n");
+	}
+	for (int i = 0; i < ENV_MAX_VIEWS; i++) {
+		const struct env_view *v = &e->view[i];
+		if (!v->used)
+			continue;
+		fprintf(f, "view %s width=%d height=%d icons=%d eye=", v->name, v->width, v->height,
+			v->icons);
+		write_vec(f, v->eye, 3);
+		fprintf(f, " target=");
+		write_vec(f, v->target, 3);
+		fprintf(f, "\n");
+	}
+	fprintf(f, "end\n");
+	return ferror(f) ? -1 : 0;
+}
+
+char *
+session_to_string(const struct env *e, size_t *len)
+{
+	char *buf = NULL;
+	size_t n = 0;
+	FILE *f = open_memstream(&buf, &n);
+	if (!f)
+		return NULL;
+	int rc = session_write(e, f);
+	if (fclose(f) != 0 || rc < 0) {
+		free(buf);
+		return NULL;
+	}
+	*len = n;
+	return buf;
+}
+
+/* ---- reading ----------------------------------------------------------- */
+
+struct reader {
+	const char *text, *end;
+	int line;
+	char *err;
+	size_t errlen;
+	struct words w;
+};
+
+static int
+fail(struct reader *r, const char *fmt, ...)
+{
+	char msg[200];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof msg, fmt, ap);
+	va_end(ap);
+	snprintf(r->err, r->errlen, "line %d: %s", r->line, msg);
+	return -1;
+}
+
+/* the next non-empty line as words; 1, 0 at the end, -1 on error */
+static int
+next_line(struct reader *r)
+{
+	while (r->text < r->end) {
+		const char *nl = memchr(r->text, '\n', (size_t)(r->end - r->text));
+		size_t len = nl ? (size_t)(nl - r->text) : (size_t)(r->end - r->text);
+		const char *line = r->text;
+		r->text = nl ? nl + 1 : r->end;
+		r->line++;
+		if (len > WORDS_LINE_MAX)
+			return fail(r, "line too long");
+		const char *msg;
+		enum words_status st = words_split(line, len, &r->w, &msg);
+		if (st == WORDS_EMPTY)
+			continue;
+		if (st != WORDS_OK)
+			return fail(r, "%s", msg);
+		return 1;
+	}
+	return 0;
+}
+
+/* value of "key=..." among words from index `from`; NULL when absent */
+static const char *
+arg(const struct words *w, int from, const char *key)
+{
+	for (int i = from; i < w->n; i++)
+		if (words_is_key(w->w[i], key))
+			return w->w[i] + strlen(key) + 1;
+	return NULL;
+}
+
+static int
+read_xform(const char *s, struct xform *dest)
+{
+	double v[12];
+	if (!s || words_list(s, UNIT_NONE, 12, v) < 0)
+		return -1;
+	memcpy(dest->p, v, sizeof dest->p);
+	memcpy(dest->r, v + 3, sizeof dest->r);
+	return 0;
+}
+
+static int
+read_uint(const char *s, unsigned long max, unsigned long *dest)
+{
+	char *end;
+	if (!s || !*s || *s == '-')
+		return -1;
+	*dest = strtoul(s, &end, 10);
+	return *end || *dest > max ? -1 : 0;
+}
+
+static int
+lookup(const char *const *names, int n, const char *s)
+{
+	for (int i = 0; s && i < n; i++)
+		if (!strcmp(names[i], s))
+			return i;
+	return -1;
+}
+
+static int
+find_fig(struct env *e, const char *name)
+{
+	for (int i = 0; i < ENV_MAX_FIGURES; i++)
+		if (e->fig[i].gen && !strcmp(e->fig[i].name, name))
+			return i;
+	return -1;
+}
+
+static int
+read_figure(struct reader *r, struct env *e, const char *base_dir, const char *library_dir)
+{
+	struct words *w = &r->w;
+	unsigned long slot, gen;
+	if (w->n < 5 || !words_is_name(w->w[1]) || read_uint(arg(w, 2, "slot"), ENV_MAX_FIGURES - 1, &slot) < 0 ||
+	    read_uint(arg(w, 2, "gen"), 0xffffffffu, &gen) < 0 || gen == 0)
+		return fail(r, "expected: figure NAME slot=N gen=G human|file ...");
+	if (e->fig[slot].gen || find_fig(e, w->w[1]) >= 0)
+		return fail(r, "figure %s or its slot appears twice", w->w[1]);
+	char err[300];
+	struct model *m = NULL;
+	struct human_def hd = human_default_def(HUMAN_MALE);
+	int human = !strcmp(w->w[4], "human");
+	const char *path = NULL;
+	if (human) {
+		const char *sex = arg(w, 5, "sex");
+		if (!sex || (strcmp(sex, "male") && strcmp(sex, "female")))
+			return fail(r, "a human needs sex=male|female");
+		hd.sex = !strcmp(sex, "male") ? HUMAN_MALE : HUMAN_FEMALE;
+		if (words_number(arg(w, 5, "stature") ? arg(w, 5, "stature") : "x", UNIT_LENGTH, &hd.stature) < 0 ||
+		    words_number(arg(w, 5, "mass") ? arg(w, 5, "mass") : "x", UNIT_NONE, &hd.mass) < 0)
+			return fail(r, "a human needs stature= and mass=");
+		m = human_build(&hd, err, sizeof err);
+	} else if (!strcmp(w->w[4], "file") && w->n == 6) {
+		path = w->w[5];
+		char full[2 * ENV_PATH_MAX + 4200];
+		if (!strncmp(path, "lib:", 4))
+			snprintf(full, sizeof full, "%s/%s", library_dir ? library_dir : ".", path + 4);
+		else
+			snprintf(full, sizeof full, "%s/%s", base_dir ? base_dir : ".", path);
+		m = figure_read_file(full, err, sizeof err);
+	} else {
+		return fail(r, "a figure is 'human ...' or 'file PATH'");
+	}
+	if (!m)
+		return fail(r, "figure %s: %s", w->w[1], err);
+	/* put it in its slot with its generation, as it was */
+	uint32_t keep = e->next_gen;
+	int got = env_add_figure(e, m, w->w[1], human, &hd, path);
+	if (got < 0)
+		return fail(r, "figure %s could not be added", w->w[1]);
+	if (got != (int)slot) { /* move it into the recorded slot */
+		e->fig[slot] = e->fig[got];
+		memset(&e->fig[got], 0, sizeof e->fig[got]);
+	}
+	e->fig[slot].gen = (uint32_t)gen;
+	e->next_gen = keep;
+	return 0;
+}
+
+static int
+read_root(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	int fig = w->n == 4 ? find_fig(e, w->w[1]) : -1;
+	if (fig < 0)
+		return fail(r, "expected: root FIGURE SEG.SITE XFORM for a figure defined above");
+	struct env_figure *f = &e->fig[fig];
+	int site = model_find_site(f->model, w->w[2]);
+	struct xform x;
+	if (site < 0 || read_xform(w->w[3], &x) < 0)
+		return fail(r, "bad root site or frame");
+	f->state->root_site = site;
+	f->state->root_xf = x;
+	/* rebuild the hierarchy for this root without moving it */
+	struct xform keep = x;
+	state_set_root(f->model, f->state, site);
+	f->state->root_xf = keep;
+	kin_update(f->model, f->state);
+	return 0;
+}
+
+static int
+read_q(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	int fig = w->n == 3 ? find_fig(e, w->w[1]) : -1;
+	if (fig < 0)
+		return fail(r, "expected: q FIGURE V0,V1,... for a figure defined above");
+	struct env_figure *f = &e->fig[fig];
+	const struct model *m = f->model;
+	double *q = malloc(sizeof *q * (size_t)(m->ndof + 1));
+	if (!q)
+		return fail(r, "out of memory");
+	int ok = m->ndof == 0 ? !strcmp(w->w[2], "-") : words_list(w->w[2], UNIT_NONE, m->ndof, q) == 0;
+	for (int d = 0; ok && d < m->ndof; d++)
+		ok = q[d] >= m->dof_lo[d] && q[d] <= m->dof_hi[d];
+	if (ok)
+		memcpy(f->state->q, q, sizeof *q * (size_t)m->ndof);
+	free(q);
+	if (!ok)
+		return fail(r, "figure %s needs %d values within their limits", f->name, m->ndof);
+	kin_update(m, f->state);
+	return 0;
+}
+
+/* a constraint definition from key=value words (from index from on) */
+static int
+read_def(struct reader *r, int from, const struct model *m, struct ik_constraint_def *dest)
+{
+	struct words *w = &r->w;
+	struct ik_constraint_def d = ik_constraint_default_def();
+	unsigned long group;
+	const char *eff = arg(w, from, "effector"), *gs = arg(w, from, "goalsite"),
+		   *st = arg(w, from, "start");
+	d.effector_site = eff ? model_find_site(m, eff) : -1;
+	d.goal_site = gs && strcmp(gs, "-") ? model_find_site(m, gs) : -1;
+	d.start_joint = st && strcmp(st, "-") ? model_find_joint(m, st) : -1;
+	int pos = lookup(pos_names, 4, arg(w, from, "pos")), ori = lookup(ori_names, 4, arg(w, from, "ori"));
+	const char *en = arg(w, from, "enabled"), *com = arg(w, from, "com");
+	if (d.effector_site < 0 || (gs && strcmp(gs, "-") && d.goal_site < 0) ||
+	    (st && strcmp(st, "-") && d.start_joint < 0) || pos < 0 || ori < 0 || !en || !com ||
+	    read_uint(arg(w, from, "group"), 3, &group) < 0 ||
+	    read_xform(arg(w, from, "effoff"), &d.effector_offset) < 0 ||
+	    read_xform(arg(w, from, "goal"), &d.goal_xf) < 0 ||
+	    words_list(arg(w, from, "axis"), UNIT_NONE, 3, d.goal_axis) < 0 ||
+	    words_list(arg(w, from, "effaxis"), UNIT_NONE, 3, d.effector_axis) < 0 ||
+	    words_number(arg(w, from, "posweight") ? arg(w, from, "posweight") : "", UNIT_NONE, &d.pos_weight) < 0 ||
+	    words_number(arg(w, from, "weight") ? arg(w, from, "weight") : "", UNIT_NONE, &d.weight) < 0)
+		return -1;
+	d.pos = (enum ik_pos)pos;
+	d.ori = (enum ik_ori)ori;
+	d.enabled = !strcmp(en, "1");
+	d.com_effector = !strcmp(com, "1");
+	d.group = (int)group;
+	*dest = d;
+	return 0;
+}
+
+/* "behave FIG V0,V1,..." and "bdef FIG K fields": a figure's behaviours */
+static int
+read_behave(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	int fig = w->n >= 3 ? find_fig(e, w->w[1]) : -1;
+	if (fig < 0)
+		return fail(r, "expected: %s FIGURE ... for a figure defined above", w->w[0]);
+	struct env_figure *f = &e->fig[fig];
+	if (!strcmp(w->w[0], "bdef")) {
+		unsigned long k;
+		if (!f->behave || read_uint(w->w[2], BEHAVE_NCON - 1, &k) < 0 ||
+		    read_def(r, 3, f->model, &f->behave->def[k]) < 0)
+			return fail(r, "bad behaviour constraint for %s", f->name);
+		f->behave->detached = 1;
+		f->ik_stale = 1;
+		return 0;
+	}
+	double v[256];
+	int n = 1;
+	for (const char *c = w->w[2]; *c; c++)
+		n += *c == ',';
+	struct behave *b = f->behave ? f->behave : calloc(1, sizeof *b);
+	if (!b || n > 256 || w->n != 3 || words_list(w->w[2], UNIT_NONE, n, v) < 0 ||
+	    behave_unpack(b, f->model, v, n) < 0) {
+		if (b != f->behave)
+			free(b);
+		return fail(r, "bad behaviour state for %s", f->name);
+	}
+	f->behave = b;
+	f->ik_stale = 1;
+	/* what the behaviours measure, measured again on the posture read above */
+	balance_measure(f->model, f->state, BALANCE_CONTACT, &b->bal);
+	return 0;
+}
+
+static int
+read_constraint(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	unsigned long slot, gen, group;
+	const char *figname = arg(w, 2, "figure");
+	int fig = figname ? find_fig(e, figname) : -1;
+	if (w->n < 3 || !words_is_name(w->w[1]) || fig < 0 ||
+	    read_uint(arg(w, 2, "slot"), ENV_MAX_CONSTRAINTS - 1, &slot) < 0 ||
+	    read_uint(arg(w, 2, "gen"), 0xffffffffu, &gen) < 0 || gen == 0 ||
+	    read_uint(arg(w, 2, "group"), 3, &group) < 0)
+		return fail(r, "expected: constraint NAME slot=N gen=G figure=FIG ... group=G");
+	const struct model *m = e->fig[fig].model;
+	struct ik_constraint_def d;
+	if (read_def(r, 2, m, &d) < 0)
+		return fail(r, "constraint %s: a field is missing or bad", w->w[1]);
+	d.group = (int)group;
+	if (e->con[slot].gen)
+		return fail(r, "constraint slot %lu appears twice", slot);
+	/* the solver checks the definition itself */
+	if (ik_add(e->fig[fig].ik, m, &d) < 0)
+		return fail(r, "constraint %s is not a valid definition", w->w[1]);
+	struct env_constraint *c = &e->con[slot];
+	c->gen = (uint32_t)gen;
+	snprintf(c->name, sizeof c->name, "%s", w->w[1]);
+	c->fig = fig;
+	c->def = d;
+	e->fig[fig].ik_stale = 1;
+	return 0;
+}
+
+/* "attach FIG limb= side= kind= object= segment= rel=": a hand or foot held to a figure */
+static int
+read_attach(struct reader *r, struct env *e)
+{
+	static const char *const limbs[] = { "hand", "foot" }, *const sides[] = { "left", "right" },
+				  *const kinds[] = { "grab", "local" };
+	struct words *w = &r->w;
+	struct env_attach a = { .used = 1 };
+	const char *obj = arg(w, 2, "object"), *seg = arg(w, 2, "segment");
+	a.fig = w->n == 8 ? find_fig(e, w->w[1]) : -1;
+	a.obj = obj ? find_fig(e, obj) : -1;
+	a.limb = (enum attach_limb)lookup(limbs, 2, arg(w, 2, "limb"));
+	a.side = lookup(sides, 2, arg(w, 2, "side"));
+	a.kind = (enum attach_kind)lookup(kinds, 2, arg(w, 2, "kind"));
+	a.seg = a.obj >= 0 && seg ? model_find_segment(e->fig[a.obj].model, seg) : -1;
+	if (a.fig < 0 || a.obj < 0 || (int)a.limb < 0 || a.side < 0 || (int)a.kind < 0 || a.seg < 0 ||
+	    read_xform(arg(w, 2, "rel"), &a.rel) < 0)
+		return fail(r, "expected: attach FIG limb=hand|foot side=left|right kind=grab|local "
+			       "object=FIG segment=SEG rel=12 numbers, for figures defined above");
+	if (attach_add(e, &a) < 0)
+		return fail(r, "attachment of %s to %s is not possible (behaviours off? twice?)",
+			    w->w[1], obj);
+	return 0;
+}
+
+static int
+read_view(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	unsigned long wd, ht, icons;
+	struct env_view v = { .used = 1 };
+	if (w->n != 7 || !words_is_name(w->w[1]) || env_find_view(e, w->w[1]) >= 0 ||
+	    read_uint(arg(w, 2, "width"), 16384, &wd) < 0 || wd < 16 ||
+	    read_uint(arg(w, 2, "height"), 16384, &ht) < 0 || ht < 16 ||
+	    read_uint(arg(w, 2, "icons"), 1, &icons) < 0 ||
+	    words_list(arg(w, 2, "eye"), UNIT_NONE, 3, v.eye) < 0 ||
+	    words_list(arg(w, 2, "target"), UNIT_NONE, 3, v.target) < 0)
+		return fail(r, "expected: view NAME width=W height=H icons=0|1 eye=X,Y,Z target=X,Y,Z");
+	snprintf(v.name, sizeof v.name, "%s", w->w[1]);
+	v.width = (int)wd;
+	v.height = (int)ht;
+	v.icons = (int)icons;
+	for (int i = 0; i < ENV_MAX_VIEWS; i++)
+		if (!e->view[i].used) {
+			e->view[i] = v;
+			return 0;
+		}
+	return fail(r, "more than %d views", ENV_MAX_VIEWS);
+}
+
+int
+session_read(const char *text, size_t len, const char *base_dir, const char *library_dir,
+	     struct env *dest, char *err, size_t errlen)
+{
+	struct reader *r = malloc(sizeof *r);
+	if (!r) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	*r = (struct reader){ text, text + len, 0, err, errlen, { 0 } };
+	int rc = -1, got = next_line(r);
+	unsigned long version, next_gen = 0;
+	if (got <= 0 || r->w.n != 2 || strcmp(r->w.w[0], "session") ||
+	    read_uint(r->w.w[1], 1000000, &version) < 0) {
+		if (got >= 0)
+			fail(r, "not a session file (expected 'session %d')", SESSION_VERSION);
+		goto out;
+	}
+	if (version > SESSION_VERSION) {
+		fail(r, "session version %lu is newer than this daemon's %d", version, SESSION_VERSION);
+		goto out;
+	}
+	int ended = 0;
+	while (!ended && (got = next_line(r)) > 0) {
+		const char *kw = r->w.w[0];
+		int ok;
+		if (!strcmp(kw, "next_gen"))
+			ok = r->w.n == 2 && read_uint(r->w.w[1], 0xffffffffu, &next_gen) == 0 ? 0 : fail(r, "bad next_gen");
+		else if (!strcmp(kw, "figure"))
+			ok = read_figure(r, dest, base_dir, library_dir);
+		else if (!strcmp(kw, "root"))
+			ok = read_root(r, dest);
+		else if (!strcmp(kw, "q"))
+			ok = read_q(r, dest);
+		else if (!strcmp(kw, "constraint"))
+			ok = read_constraint(r, dest);
+		else if (!strcmp(kw, "view"))
+			ok = read_view(r, dest);
+		else if (!strcmp(kw, "behave") || !strcmp(kw, "bdef"))
+			ok = read_behave(r, dest);
+		else if (!strcmp(kw, "attach"))
+			ok = read_attach(r, dest);
+		else if (!strcmp(kw, "end"))
+			ok = 0, ended = 1;
+		else
+			ok = fail(r, "unknown statement '%s'", kw);
+		if (ok < 0)
+			goto out;
+	}
+	if (got < 0)
+		goto out;
+	if (!ended) {
+		fail(r, "the session ends without 'end' (a truncated file?)");
+		goto out;
+	}
+	if (next_gen)
+		dest->next_gen = (uint32_t)next_gen;
+	rc = 0;
+out:
+	if (rc < 0) {
+		env_clear(dest);
+		env_init(dest);
+	}
+	free(r);
+	return rc;
+}
+
+int
+session_write_posture(const struct env *e, int fig, FILE *f)
+{
+	const struct env_figure *fg = &e->fig[fig];
+	const struct model *m = fg->model;
+	const struct state *s = fg->state;
+	char site[2 * MODEL_NAME_MAX];
+	fprintf(f, "posture %d\nfigure %s\nroot %s ", POSTURE_VERSION, m->name,
+		model_site_fullname(m, s->root_site, site, sizeof site));
+	write_xform(f, &s->root_xf);
+	fprintf(f, "\n");
+	for (int j = 0; j < m->njnt; j++) {
+		if (!m->jnt_ndof[j])
+			continue;
+		fprintf(f, "joint %s", m->jnt_name[j]);
+		for (int d = m->jnt_dof0[j]; d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++)
+			fprintf(f, " %.17g", s->q[d]);
+		fprintf(f, "\n");
+	}
+	fprintf(f, "end\n");
+	return ferror(f) ? -1 : 0;
+}
+
+int
+session_read_posture(struct env *e, int fig, const char *text, size_t len, char *err, size_t errlen)
+{
+	struct env_figure *fg = &e->fig[fig];
+	const struct model *m = fg->model;
+	struct reader *r = malloc(sizeof *r);
+	double *q = malloc(sizeof *q * (size_t)(m->ndof + 1));
+	int rc = -1, got, root = -1;
+	struct xform root_xf;
+	if (!r || !q) {
+		snprintf(err, errlen, "out of memory");
+		goto out;
+	}
+	*r = (struct reader){ text, text + len, 0, err, errlen, { 0 } };
+	memcpy(q, fg->state->q, sizeof *q * (size_t)m->ndof);
+	unsigned long version;
+	if (next_line(r) <= 0 || r->w.n != 2 || strcmp(r->w.w[0], "posture") ||
+	    read_uint(r->w.w[1], 1000000, &version) < 0 || version > POSTURE_VERSION) {
+		fail(r, "not a posture file of version <= %d", POSTURE_VERSION);
+		goto out;
+	}
+	int ended = 0;
+	while (!ended && (got = next_line(r)) > 0) {
+		struct words *w = &r->w;
+		if (!strcmp(w->w[0], "end")) {
+			ended = 1;
+		} else if (!strcmp(w->w[0], "figure") && w->n == 2) {
+			continue; /* informative: postures move between figures of the same joints */
+		} else if (!strcmp(w->w[0], "root") && w->n == 3) {
+			root = model_find_site(m, w->w[1]);
+			if (root < 0 || read_xform(w->w[2], &root_xf) < 0) {
+				fail(r, "no site %s on this figure, or a bad frame", w->w[1]);
+				goto out;
+			}
+		} else if (!strcmp(w->w[0], "joint") && w->n >= 2) {
+			int j = model_find_joint(m, w->w[1]);
+			if (j < 0 || w->n - 2 != m->jnt_ndof[j]) {
+				fail(r, "no joint %s of %d dofs on this figure", w->w[1], w->n - 2);
+				goto out;
+			}
+			for (int k = 0; k < m->jnt_ndof[j]; k++) {
+				int d = m->jnt_dof0[j] + k;
+				double v;
+				if (words_number(w->w[2 + k], UNIT_NONE, &v) < 0 || v < m->dof_lo[d] ||
+				    v > m->dof_hi[d]) {
+					fail(r, "joint %s: value %d is not a number within its limits",
+					     w->w[1], k + 1);
+					goto out;
+				}
+				q[d] = v;
+			}
+		} else {
+			fail(r, "unknown statement '%s'", w->w[0]);
+			goto out;
+		}
+	}
+	if (!ended) {
+		if (got >= 0)
+			fail(r, "the posture ends without 'end'");
+		goto out;
+	}
+	/* everything checked: apply */
+	memcpy(fg->state->q, q, sizeof *q * (size_t)m->ndof);
+	if (root >= 0) {
+		state_set_root(m, fg->state, root);
+		fg->state->root_xf = root_xf;
+	}
+	kin_update(m, fg->state);
+	rc = 0;
+out:
+	free(r);
+	free(q);
+	return rc;
+}
+
+void
+session_write_figure_posture(const struct env *e, int fig, FILE *f)
+{
+	write_figure_posture(&e->fig[fig], f);
+	if (e->fig[fig].behave)
+		write_behave(&e->fig[fig], f);
+}
+
+int
+session_apply_line(struct env *e, const char *line, size_t len, char *err, size_t errlen)
+{
+	struct reader *r = malloc(sizeof *r);
+	if (!r) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	*r = (struct reader){ line, line + len, 0, err, errlen, { 0 } };
+	int rc = next_line(r);
+	if (rc > 0) {
+		if (!strcmp(r->w.w[0], "root"))
+			rc = read_root(r, e);
+		else if (!strcmp(r->w.w[0], "q"))
+			rc = read_q(r, e);
+		else if (!strcmp(r->w.w[0], "behave") || !strcmp(r->w.w[0], "bdef"))
+			rc = read_behave(r, e);
+		else
+			rc = fail(r, "not a posture statement");
+	} else if (rc == 0) {
+		rc = fail(r, "empty statement");
+	}
+	free(r);
+	return rc < 0 ? -1 : 0;
+}

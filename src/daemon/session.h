@@ -1,0 +1,52 @@
+/*
+ * session.h - the environment and postures as versioned text: session
+ * files, posture files, journal snapshots and undo checkpoints all use it.
+ * Numbers are written with 17 significant digits, so reading back gives
+ * the same state bit for bit.
+ */
+#ifndef POSTURE_SESSION_H
+#define POSTURE_SESSION_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "pose/env.h"
+
+#define SESSION_VERSION 1
+#define POSTURE_VERSION 1
+
+/* writes the whole environment; 0, or -1 on an I/O error */
+int session_write(const struct env *e, FILE *f);
+
+/*
+ * Reads an environment from text into dest (which must be initialised and
+ * empty). Figure files are read relative to base_dir, "lib:NAME" ones from
+ * library_dir. On error returns -1 with "line N: ..." in err and leaves
+ * dest empty.
+ */
+int session_read(const char *text, size_t len, const char *base_dir, const char *library_dir,
+		 struct env *dest, char *err, size_t errlen);
+
+/* a figure's posture: root and every joint value */
+int session_write_posture(const struct env *e, int fig, FILE *f);
+
+/*
+ * Applies a posture file to figure fig: joints by name (all must exist),
+ * the root by site name. Checks everything before changing anything.
+ */
+int session_read_posture(struct env *e, int fig, const char *text, size_t len, char *err,
+			 size_t errlen);
+
+/*
+ * Applies one posture statement of a session ("root FIG SITE XFORM" or
+ * "q FIG VALUES..."), as the journal records solver changes. 0 or -1.
+ */
+int session_apply_line(struct env *e, const char *line, size_t len, char *err, size_t errlen);
+
+/* writes one figure's posture statements (root and q lines) */
+void session_write_figure_posture(const struct env *e, int fig, FILE *f);
+
+/* writes the whole environment into a malloc'd string; NULL when out of memory */
+char *session_to_string(const struct env *e, size_t *len);
+
+#endif

@@ -1,0 +1,133 @@
+/*
+ * env.h - the environment (§A.3): the figures the daemon holds, their
+ * constraints, and the ids clients use for them.
+ *
+ * Ids carry a generation (Box2D's b2BodyId): a slot reused by a later
+ * figure or constraint has a new generation, so an old id is refused as
+ * stale rather than silently naming something else.
+ */
+#ifndef POSTURE_ENV_H
+#define POSTURE_ENV_H
+
+#include <stdint.h>
+
+#include "pose/behave.h"
+#include "figure/human.h"
+#include "pose/ik.h"
+#include "figure/model.h"
+#include "figure/state.h"
+
+#define ENV_MAX_FIGURES 16
+#define ENV_MAX_CONSTRAINTS 64
+#define ENV_PATH_MAX 256
+#define ENV_MAX_VIEWS 8
+
+enum env_err {
+	ENV_OK = 0,
+	ENV_NOT_FOUND = -1,
+	ENV_STALE = -2,
+	ENV_EXISTS = -3,
+	ENV_FULL = -4,
+	ENV_BAD = -5,
+};
+
+struct env_figure {
+	uint32_t gen; /* 0: a free slot */
+	char name[MODEL_NAME_MAX];
+	/* where the model came from, so a session can rebuild it */
+	int is_human;
+	struct human_def human;
+	char path[ENV_PATH_MAX]; /* figure file, relative to the state directory */
+	struct model *model;
+	struct state *state;
+	struct ik *ik;
+	int ik_stale; /* the constraint set changed since the solver was filled */
+	struct behave *behave; /* the human's behaviours when switched on, else NULL */
+};
+
+struct env_constraint {
+	uint32_t gen; /* 0: a free slot */
+	char name[MODEL_NAME_MAX];
+	int fig; /* figure slot; the def's site and joint indices are that figure's */
+	struct ik_constraint_def def;
+};
+
+/*
+ * A limb of a behaving human held to another figure (Table D.4, §D.1.1):
+ * ATTACH_GRAB, the hand grabbed the object, which follows the hand (rel:
+ * the object's base segment in the palm's frame); ATTACH_LOCAL, the hand
+ * or foot holds a location local to the object's segment and follows it
+ * (rel: the palm or toes in that segment's frame). See attach.h.
+ */
+enum attach_kind { ATTACH_GRAB, ATTACH_LOCAL };
+enum attach_limb { ATTACH_HAND, ATTACH_FOOT };
+
+struct env_attach {
+	int used;
+	enum attach_kind kind;
+	enum attach_limb limb;
+	int fig, side;  /* the human and its limb */
+	int obj, seg;   /* the object figure and its segment */
+	struct xform rel;
+};
+
+#define ENV_MAX_ATTACH (4 * ENV_MAX_FIGURES)
+
+/* a named view (§1.7: several graphics windows), its camera aimed at a point */
+struct env_view {
+	int used;
+	char name[MODEL_NAME_MAX];
+	int width, height;
+	double eye[3], target[3];
+	int icons; /* 1: the manipulation icons, balance and goals */
+};
+
+struct env {
+	struct env_figure fig[ENV_MAX_FIGURES];
+	struct env_constraint con[ENV_MAX_CONSTRAINTS];
+	struct env_view view[ENV_MAX_VIEWS];
+	struct env_attach att[ENV_MAX_ATTACH];
+	uint32_t next_gen;
+};
+
+void env_init(struct env *e);
+/* frees every figure; the env is empty and usable afterwards */
+void env_clear(struct env *e);
+
+/*
+ * Adds a figure, taking ownership of model (freed on failure too).
+ * name NULL picks one from the model's. Returns the slot or an env_err.
+ */
+int env_add_figure(struct env *e, struct model *model, const char *name, int is_human,
+		   const struct human_def *human, const char *path);
+/* removes a figure and its constraints */
+void env_remove_figure(struct env *e, int slot);
+
+/* ref is a name or an id "f<slot>.<gen>"; returns the slot or an env_err */
+int env_find_figure(const struct env *e, const char *ref);
+int env_find_constraint(const struct env *e, const char *ref);
+
+/* writes the id of a slot ("f3.12", "c0.7") into dest */
+void env_figure_id(const struct env *e, int slot, char dest[32]);
+void env_constraint_id(const struct env *e, int slot, char dest[32]);
+
+/* adds a constraint (name NULL: c1, c2, ...); returns the slot or an env_err */
+int env_add_constraint(struct env *e, int fig, const char *name,
+		       const struct ik_constraint_def *def);
+void env_remove_constraint(struct env *e, int slot);
+/* replaces a constraint's definition (goal moves, switching on and off) */
+void env_set_constraint(struct env *e, int slot, const struct ik_constraint_def *def);
+
+/* refills a figure's solver from its constraints when they changed */
+void env_sync_solver(struct env *e, int fig);
+
+/* the constraint's index in its figure's solver, or -1 (disabled or not yet synced) */
+int env_solver_index(const struct env *e, int slot);
+
+/* a view by name, or -1 */
+int env_find_view(const struct env *e, const char *name);
+
+/* number of figures */
+int env_count(const struct env *e);
+
+#endif

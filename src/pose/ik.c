@@ -1,0 +1,840 @@
+/* ik.c - constraint sets and the bounded variable-metric minimiser (Chapter 4) */
+#include "pose/ik.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "pose/ik_internal.h"
+#include "figure/kin.h"
+
+#define SETTLE_ITER 4 /* the window of opt->settle_rel */
+#define ARMIJO 1e-4     /* sufficient decrease of the line search */
+#define MAX_HALVINGS 12 /* line search trials before the point counts as stationary */
+#define MAX_STEP 0.5    /* radians or metres: the largest change of one variable per iteration */
+
+struct ik_constraint_def
+ik_constraint_default_def(void)
+{
+	struct ik_constraint_def d = { 0 };
+	d.effector_site = -1;
+	d.goal_site = -1;
+	xform_identity(&d.effector_offset);
+	xform_identity(&d.goal_xf);
+	d.pos = IK_POINT;
+	d.ori = IK_ORI_NONE;
+	d.goal_axis[1] = 1;
+	d.effector_axis[2] = 1;
+	d.pos_weight = 1;
+	d.weight = 1;
+	d.start_joint = -1;
+	d.enabled = 1;
+	return d;
+}
+
+struct ik_options
+ik_default_options(void)
+{
+	struct ik_options o = { 0 };
+	o.step_pos = 0.25;            /* §4.7.1: 25 cm */
+	o.step_ori = 5 * M_PI / 180;  /* §4.7.1: 5 degrees */
+	o.max_iter = 200;
+	o.budget_us = 10000;          /* §4.7.2: a frame's share at 60 Hz; the loop passes its own */
+	o.tol_pos = 1e-4;
+	o.tol_ori = 1e-3;
+	o.settle_rel = 1e-3; /* at that pace 50 more iterations would lower it by about 1 % */
+	o.balance_rounds = 8;
+	o.balance_tol = 1e-4;
+	o.restarts = 0;
+	o.restart_after = 50;
+	o.restart_groups = ~0u;
+	o.seed = 1;
+	return o;
+}
+
+const char *
+ik_status_to_str(enum ik_status st)
+{
+	switch (st) {
+	case IK_CONVERGED:
+		return "converged";
+	case IK_ITER_LIMIT:
+		return "iteration-limit";
+	case IK_TIME_LIMIT:
+		return "time-limit";
+	}
+	return "unknown";
+}
+
+struct ik *
+ik_make(const struct model *m, int max_constraints)
+{
+	if (max_constraints < 1)
+		return NULL;
+	struct ik *ik = calloc(1, sizeof *ik);
+	if (!ik)
+		return NULL;
+	size_t nd = (size_t)(m->ndof > 0 ? m->ndof : 1), cap = (size_t)max_constraints;
+	ik->cap = max_constraints;
+	ik->ndof = m->ndof;
+	ik->con = calloc(cap, sizeof *ik->con);
+	ik->spring_angle = calloc(nd, sizeof(double));
+	ik->spring_weight = calloc(nd, sizeof(double));
+	ik->spring_side = calloc(nd, 1);
+	int ok = 1;
+	for (int g = 0; g < IK_MAX_GROUPS; g++) {
+		struct ik_chain *ch = &ik->chain[g];
+		ch->var_dof = calloc(nd, sizeof(int));
+		ch->dof_var = calloc(nd, sizeof(int));
+		ch->lo = calloc(nd, sizeof(double));
+		ch->hi = calloc(nd, sizeof(double));
+		ch->dyn_seg = calloc((size_t)m->nseg, sizeof(int));
+		ch->moves_eff = calloc(cap * nd, 1);
+		ch->moves_goal = calloc(cap * nd, 1);
+		ch->in_group = calloc(cap, 1);
+		ok = ok && ch->var_dof && ch->dof_var && ch->lo && ch->hi && ch->dyn_seg &&
+		     ch->moves_eff && ch->moves_goal && ch->in_group;
+	}
+	ik->move_seg = calloc((size_t)m->nseg, sizeof(int));
+	ik->seg_mark = calloc((size_t)m->nseg, 1);
+	double **work[] = { &ik->x, &ik->g, &ik->xt, &ik->gt, &ik->d, &ik->sv, &ik->yv, &ik->hy,
+			    &ik->best };
+	ok = ok && ik->con && ik->spring_angle && ik->spring_weight && ik->spring_side &&
+	     ik->move_seg && ik->seg_mark;
+	for (size_t i = 0; i < sizeof work / sizeof *work; i++) {
+		*work[i] = calloc(nd, sizeof(double));
+		ok = ok && *work[i];
+	}
+	ik->H = calloc(nd * nd, sizeof(double));
+	ik->B = calloc(nd * nd, sizeof(double));
+	ik->jr = calloc(nd * IK_RESIDUAL_MAX, sizeof(double));
+	ik->pin = calloc(nd, 1);
+	ik->free_idx = calloc(nd, sizeof(int));
+	ik->H2 = calloc(nd * nd, sizeof(double));
+	if (!ok || !ik->H || !ik->B || !ik->jr || !ik->pin || !ik->free_idx || !ik->H2) {
+		ik_free(ik);
+		return NULL;
+	}
+	return ik;
+}
+
+void
+ik_free(struct ik *ik)
+{
+	if (!ik)
+		return;
+	free(ik->con);
+	free(ik->spring_angle);
+	free(ik->spring_weight);
+	free(ik->spring_side);
+	for (int g = 0; g < IK_MAX_GROUPS; g++) {
+		struct ik_chain *ch = &ik->chain[g];
+		free(ch->var_dof);
+		free(ch->dof_var);
+		free(ch->lo);
+		free(ch->hi);
+		free(ch->dyn_seg);
+		free(ch->moves_eff);
+		free(ch->moves_goal);
+		free(ch->in_group);
+	}
+	free(ik->move_seg);
+	free(ik->seg_mark);
+	free(ik->x);
+	free(ik->g);
+	free(ik->xt);
+	free(ik->gt);
+	free(ik->d);
+	free(ik->sv);
+	free(ik->yv);
+	free(ik->hy);
+	free(ik->best);
+	free(ik->H);
+	free(ik->B);
+	free(ik->jr);
+	free(ik->pin);
+	free(ik->free_idx);
+	free(ik->H2);
+	free(ik);
+}
+
+static int
+finite_xform(const struct xform *x)
+{
+	for (int i = 0; i < 9; i++)
+		if (!isfinite(x->r[i]))
+			return 0;
+	return isfinite(x->p[0]) && isfinite(x->p[1]) && isfinite(x->p[2]);
+}
+
+static int
+unit_axis(const double v[3])
+{
+	double n = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+	return isfinite(n) && fabs(n - 1) < 1e-9;
+}
+
+static int
+valid_def(const struct model *m, const struct ik_constraint_def *d)
+{
+	if (d->effector_site < 0 || d->effector_site >= m->nsite)
+		return 0;
+	if (d->goal_site < -1 || d->goal_site >= m->nsite)
+		return 0;
+	if (d->start_joint < -1 || d->start_joint >= m->njnt)
+		return 0;
+	if ((int)d->pos < IK_POS_NONE || d->pos > IK_PLANE || (int)d->ori < IK_ORI_NONE ||
+	    d->ori > IK_AIM)
+		return 0;
+	if (!finite_xform(&d->goal_xf) || !finite_xform(&d->effector_offset))
+		return 0;
+	if (!(d->pos_weight >= 0 && d->pos_weight <= 1) || !(d->weight >= 0) || !isfinite(d->weight))
+		return 0;
+	if ((d->pos == IK_LINE || d->pos == IK_PLANE || d->ori == IK_DIRECTION) &&
+	    !unit_axis(d->goal_axis))
+		return 0;
+	if ((d->ori == IK_DIRECTION || d->ori == IK_AIM) && !unit_axis(d->effector_axis))
+		return 0;
+	return d->group >= 0 && d->group < IK_MAX_GROUPS;
+}
+
+int
+ik_add(struct ik *ik, const struct model *m, const struct ik_constraint_def *def)
+{
+	if (ik->n >= ik->cap || !valid_def(m, def))
+		return -1;
+	memset(&ik->con[ik->n], 0, sizeof ik->con[ik->n]);
+	ik->con[ik->n].def = *def;
+	ik->con[ik->n].goal_pos = ik->con[ik->n].goal_ori = def->goal_xf;
+	ik->gen++;
+	return ik->n++;
+}
+
+int
+ik_set(struct ik *ik, const struct model *m, int c, const struct ik_constraint_def *def)
+{
+	if (c < 0 || c >= ik->n || !valid_def(m, def))
+		return -1;
+	ik->con[c].def = *def;
+	ik->con[c].goal_pos = ik->con[c].goal_ori = def->goal_xf;
+	ik->gen++;
+	return 0;
+}
+
+const struct ik_constraint_def *
+ik_get(const struct ik *ik, int c)
+{
+	return c >= 0 && c < ik->n ? &ik->con[c].def : NULL;
+}
+
+int
+ik_count(const struct ik *ik)
+{
+	return ik->n;
+}
+
+void
+ik_clear(struct ik *ik)
+{
+	ik->n = 0;
+	ik->gen++;
+}
+
+int
+ik_set_goal(struct ik *ik, int c, const struct xform *goal_xf)
+{
+	if (c < 0 || c >= ik->n || !finite_xform(goal_xf))
+		return -1;
+	ik->con[c].def.goal_xf = *goal_xf;
+	ik->con[c].goal_pos = ik->con[c].goal_ori = *goal_xf;
+	return 0;
+}
+
+int
+ik_enable(struct ik *ik, int c, int on)
+{
+	if (c < 0 || c >= ik->n)
+		return -1;
+	if (ik->con[c].def.enabled != !!on)
+		ik->gen++;
+	ik->con[c].def.enabled = !!on;
+	return 0;
+}
+
+int
+ik_set_spring(struct ik *ik, const struct model *m, int dof, int side, double angle, double weight)
+{
+	if (dof < 0 || dof >= m->ndof || (side != -1 && side != 1) || !(angle > 0) ||
+	    !(weight >= 0) || !isfinite(angle) || !isfinite(weight))
+		return -1;
+	ik->spring_side[dof] = (signed char)side;
+	ik->spring_angle[dof] = angle;
+	ik->spring_weight[dof] = weight;
+	return 0;
+}
+
+/* adds the dofs of the chain from seg up to start_joint (or the root) as variables */
+static void
+add_chain(struct ik *ik, const struct model *m, const struct state *s, int seg, int start_joint)
+{
+	for (int t = seg; s->seg_root_joint[t] >= 0; t = s->seg_parent[t]) {
+		int j = s->seg_root_joint[t];
+		for (int d = m->jnt_dof0[j]; d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++) {
+			if (ik->dof_var[d] >= 0 || m->dof_lo[d] == m->dof_hi[d])
+				continue;
+			ik->dof_var[d] = ik->nvar;
+			ik->var_dof[ik->nvar] = d;
+			ik->lo[ik->nvar] = m->dof_lo[d];
+			ik->hi[ik->nvar] = m->dof_hi[d];
+			ik->nvar++;
+		}
+		if (j == start_joint)
+			return;
+	}
+}
+
+/* marks seg and its ancestors */
+static void
+mark_path(struct ik *ik, const struct state *s, int seg)
+{
+	for (int t = seg; t >= 0 && !ik->seg_mark[t]; t = s->seg_parent[t])
+		ik->seg_mark[t] = 1;
+}
+
+int
+ik_prepare(struct ik *ik, const struct model *m, struct state *s, int group)
+{
+	if (group < 0 || group >= IK_MAX_GROUPS)
+		return 0;
+	struct ik_chain *ch = &ik->chain[group];
+	ik->group = group;
+	ik->var_dof = ch->var_dof;
+	ik->dof_var = ch->dof_var;
+	ik->lo = ch->lo;
+	ik->hi = ch->hi;
+	ik->dyn_seg = ch->dyn_seg;
+	ik->moves_eff = ch->moves_eff;
+	ik->moves_goal = ch->moves_goal;
+	ik->in_group = ch->in_group;
+	if (ch->valid && ch->gen == ik->gen && ch->root_site == s->root_site) {
+		ik->nvar = ch->nvar;
+		ik->ndyn = ch->ndyn;
+		return ik->nvar;
+	}
+	ik->rebuilt++;
+	ik->nvar = 0;
+	for (int d = 0; d < m->ndof; d++)
+		ik->dof_var[d] = -1;
+	for (int ci = 0; ci < ik->n; ci++) {
+		const struct ik_constraint_def *d = &ik->con[ci].def;
+		ik->in_group[ci] = d->enabled && d->group == group && d->weight > 0;
+		if (ik->in_group[ci])
+			add_chain(ik, m, s, m->site_seg[d->effector_site], d->start_joint);
+	}
+	/* the segments to recompute: on a path to an effector or goal, below a variable */
+	memset(ik->seg_mark, 0, (size_t)m->nseg);
+	for (int ci = 0; ci < ik->n; ci++) {
+		if (!ik->in_group[ci])
+			continue;
+		const struct ik_constraint_def *d = &ik->con[ci].def;
+		mark_path(ik, s, m->site_seg[d->effector_site]);
+		if (d->goal_site >= 0)
+			mark_path(ik, s, m->site_seg[d->goal_site]);
+	}
+	ik->ndyn = 0;
+	for (int i = 0; i < m->nseg; i++) {
+		int seg = s->seg_order[i], moving = 0;
+		for (int t = seg; s->seg_root_joint[t] >= 0 && !moving; t = s->seg_parent[t]) {
+			int j = s->seg_root_joint[t];
+			for (int d = m->jnt_dof0[j]; d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++)
+				moving |= ik->dof_var[d] >= 0;
+		}
+		if (moving && ik->seg_mark[seg])
+			ik->dyn_seg[ik->ndyn++] = seg;
+	}
+	/* which variables move each effector and goal */
+	for (int ci = 0; ci < ik->n; ci++) {
+		if (!ik->in_group[ci])
+			continue;
+		const struct ik_constraint_def *d = &ik->con[ci].def;
+		unsigned char *me = &ik->moves_eff[ci * ik->ndof], *mg = &ik->moves_goal[ci * ik->ndof];
+		for (int v = 0; v < ik->nvar; v++) {
+			me[v] = (unsigned char)kin_dof_moves(m, s, ik->var_dof[v],
+							     m->site_seg[d->effector_site]);
+			mg[v] = d->goal_site >= 0 &&
+				kin_dof_moves(m, s, ik->var_dof[v], m->site_seg[d->goal_site]);
+		}
+	}
+	ch->valid = 1;
+	ch->gen = ik->gen;
+	ch->root_site = s->root_site;
+	ch->nvar = ik->nvar;
+	ch->ndyn = ik->ndyn;
+	return ik->nvar;
+}
+
+double
+ik_energy(struct ik *ik, const struct model *m, struct state *s, const double *x, double *grad)
+{
+	return ik_eval(ik, m, s, x, grad, NULL);
+}
+
+int
+ik_var_dof(const struct ik *ik, int i)
+{
+	return i >= 0 && i < ik->nvar ? ik->var_dof[i] : -1;
+}
+
+static void
+clamp_into(const struct ik *ik, double *x)
+{
+	for (int i = 0; i < ik->nvar; i++)
+		x[i] = x[i] < ik->lo[i] ? ik->lo[i] : x[i] > ik->hi[i] ? ik->hi[i] : x[i];
+}
+
+/* variable i rests on a bound that the gradient pushes it against */
+static int
+pinned(const struct ik *ik, const double *x, const double *g, int i)
+{
+	return (x[i] <= ik->lo[i] && g[i] > 0) || (x[i] >= ik->hi[i] && g[i] < 0);
+}
+
+static void
+hessian_reset(struct ik *ik, double scale)
+{
+	int n = ik->nvar;
+	memset(ik->H, 0, sizeof *ik->H * (size_t)n * (size_t)n);
+	for (int i = 0; i < n; i++)
+		ik->H[i * n + i] = scale;
+}
+
+/* BFGS update of the inverse Hessian with step sv and gradient change yv */
+static void
+hessian_update(struct ik *ik, double sy)
+{
+	int n = ik->nvar;
+	double *H = ik->H, *s = ik->sv, *y = ik->yv, *hy = ik->hy, yhy = 0;
+	for (int i = 0; i < n; i++) {
+		double acc = 0;
+		for (int j = 0; j < n; j++)
+			acc += H[i * n + j] * y[j];
+		hy[i] = acc;
+		yhy += y[i] * acc;
+	}
+	double a = (sy + yhy) / (sy * sy), b = 1 / sy;
+	for (int i = 0; i < n; i++)
+		for (int j = 0; j < n; j++)
+			H[i * n + j] += a * s[i] * s[j] - b * (hy[i] * s[j] + s[i] * hy[j]);
+}
+
+static uint64_t
+clock_now(const struct ik_clock *clock)
+{
+	return clock ? clock->now_us(clock->ctx) : 0;
+}
+
+/* xorshift32 for restarts: reproducible from opt->seed */
+static double
+uniform(uint32_t *st)
+{
+	uint32_t x = *st ? *st : 0x9e3779b9u;
+	x ^= x << 13;
+	x ^= x >> 17;
+	x ^= x << 5;
+	*st = x;
+	return (x >> 8) * (1.0 / 16777216.0);
+}
+
+/*
+ * H = (B_FF + mu I)^-1 over the free variables F, by Cholesky: the
+ * Gauss-Newton metric of the sum of squares as the starting metric that
+ * BFGS then refines. Pinned variables get zero rows and columns.
+ * Returns -1 when the metric is not positive definite.
+ */
+static int
+metric_invert(struct ik *ik)
+{
+	int n = ik->nvar, nf = 0;
+	double *B = ik->B, *H = ik->H, dmax = 0;
+	int *free_idx = ik->free_idx;
+	for (int i = 0; i < n; i++)
+		if (!ik->pin[i])
+			free_idx[nf++] = i;
+	for (int i = 0; i < nf; i++)
+		dmax = fmax(dmax, B[free_idx[i] * n + free_idx[i]]);
+	double mu = 1e-6 * dmax + 1e-12;
+	/* L L^T of the free block, in place in the lower triangle of a packed copy (uses H) */
+	double *L = ik->H2;
+	for (int i = 0; i < nf; i++) {
+		for (int j = 0; j <= i; j++) {
+			double acc = B[free_idx[i] * n + free_idx[j]] + (i == j ? mu : 0);
+			for (int k = 0; k < j; k++)
+				acc -= L[i * nf + k] * L[j * nf + k];
+			if (i == j) {
+				if (acc <= 0)
+					return -1;
+				L[i * nf + i] = sqrt(acc);
+			} else {
+				L[i * nf + j] = acc / L[j * nf + j];
+			}
+		}
+	}
+	/* M = L^-T row by row (row c of M is column c of L^-1: zero before c),
+	 * over B, which is spent; then H = M M^T. Rows keep the loops contiguous. */
+	double *M = B;
+	for (int c = 0; c < nf; c++) {
+		double *mc = &M[c * nf];
+		memset(mc, 0, sizeof *mc * (size_t)c);
+		mc[c] = 1 / L[c * nf + c];
+		for (int i = c + 1; i < nf; i++) {
+			const double *li = &L[i * nf];
+			double acc = 0;
+			for (int k = c; k < i; k++)
+				acc -= li[k] * mc[k];
+			mc[i] = acc / li[i];
+		}
+	}
+	memset(H, 0, sizeof *H * (size_t)n * (size_t)n);
+	for (int i = 0; i < nf; i++)
+		for (int j = 0; j <= i; j++) {
+			const double *mi = &M[i * nf], *mj = &M[j * nf];
+			double acc = 0;
+			for (int k = i; k < nf; k++)
+				acc += mi[k] * mj[k];
+			H[free_idx[i] * n + free_idx[j]] = H[free_idx[j] * n + free_idx[i]] = acc;
+		}
+	return 0;
+}
+
+struct group_run {
+	const struct ik_options *opt;
+	const struct ik_clock *clock;
+	uint64_t deadline; /* 0: none */
+	struct ik_result *res;
+	uint32_t rng;
+};
+
+static void
+trace(struct group_run *run, double f)
+{
+	if (run->opt->trace && run->res->trace_len < run->opt->trace_cap)
+		run->opt->trace[run->res->trace_len++] = f;
+}
+
+/* energy, gradient and a fresh Gauss-Newton metric at x */
+static double
+refresh_metric(struct ik *ik, const struct model *m, struct state *s, const double *x, double *g,
+	       struct ik_result *res)
+{
+	double f = ik_eval(ik, m, s, x, g, ik->B);
+	res->evaluations++;
+	for (int i = 0; i < ik->nvar; i++)
+		ik->pin[i] = (unsigned char)pinned(ik, x, g, i);
+	if (metric_invert(ik) < 0)
+		hessian_reset(ik, 1);
+	return f;
+}
+
+/*
+ * Minimises the prepared group's energy from the state's posture. Returns
+ * 1 when the deadline cut it. The state is left at the best point.
+ */
+static int
+minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run *run,
+	 double *f_first, double *f_last)
+{
+	const struct ik_options *opt = run->opt;
+	int n = ik->nvar, timed_out = 0, met = 0, since_start = 0;
+	int restarts_left = ik->group < 32 && (opt->restart_groups >> ik->group & 1) ? opt->restarts : 0;
+	int fresh = 1; /* 1: the metric is fresh, 2: and steepest descent was tried */
+	double *x = ik->x, *g = ik->g, *xt = ik->xt, *gt = ik->gt, *d = ik->d;
+	for (int i = 0; i < n; i++)
+		x[i] = s->q[ik->var_dof[i]];
+	clamp_into(ik, x);
+	double f = refresh_metric(ik, m, s, x, g, run->res), best_f = f;
+	*f_first = f;
+	trace(run, f);
+	memcpy(ik->best, x, sizeof *x * (size_t)n);
+	double recent[8]; /* the energy over the last iterations of this start */
+	for (;;) {
+		if ((met = ik_group_met(ik, opt->tol_pos, opt->tol_ori)))
+			break;
+		if (since_start >= opt->max_iter) {
+			run->res->status = IK_ITER_LIMIT;
+			break;
+		}
+		if (run->deadline && clock_now(run->clock) >= run->deadline) {
+			timed_out = 1;
+			break;
+		}
+		run->res->iterations++;
+		/* a start that has stopped making headway gives way to the next one
+		 * (counted whether or not restarts are allowed: max_iter bounds it) */
+		double f_8ago = since_start >= 8 ? recent[since_start % 8] : INFINITY;
+		recent[since_start % 8] = f;
+		since_start++;
+		if (restarts_left > 0 && since_start > opt->restart_after && f > 0.5 * f_8ago)
+			goto stationary;
+		/* a goal out of reach: the energy has settled near its floor, and
+		 * grinding on only polishes digits nobody sees (the next frame
+		 * starts from here anyway); with restarts left, the rule above
+		 * decides when to look elsewhere */
+		double f_then = since_start > SETTLE_ITER ? recent[(since_start - 1 - SETTLE_ITER) % 8]
+							  : INFINITY;
+		if (restarts_left <= 0 && opt->settle_rel > 0 && f >= (1 - opt->settle_rel) * f_then)
+			goto stationary;
+		/* a variable came off or onto a bound: the metric is stale */
+		int changed = 0;
+		for (int i = 0; i < n && !changed; i++)
+			changed = pinned(ik, x, g, i) != ik->pin[i];
+		if (changed)
+			refresh_metric(ik, m, s, x, g, run->res);
+		/* quasi-Newton direction over the free variables */
+		double gd = 0, gnorm = 0;
+		for (int i = 0; i < n; i++) {
+			d[i] = 0;
+			if (ik->pin[i])
+				continue;
+			for (int j = 0; j < n; j++)
+				d[i] -= ik->H[i * n + j] * g[j];
+			gd += g[i] * d[i];
+			gnorm += g[i] * g[i];
+		}
+		if (gnorm < 1e-30)
+			goto stationary;
+		if (gd >= -1e-12 * gnorm) { /* not a descent direction: steepest descent */
+			gd = 0;
+			for (int i = 0; i < n; i++) {
+				d[i] = ik->pin[i] ? 0 : -g[i];
+				gd -= g[i] * g[i];
+			}
+		}
+		double dmax = 0;
+		for (int i = 0; i < n; i++)
+			dmax = fmax(dmax, fabs(d[i]));
+		double alpha = dmax > MAX_STEP ? MAX_STEP / dmax : 1, ft = f;
+		int accepted = 0;
+		/* projected backtracking line search: accept only a sufficient
+		 * decrease; shorten by the minimiser of the quadratic through
+		 * f, the slope and the rejected value, kept within [0.1, 0.5] */
+		for (int h = 0; h < MAX_HALVINGS; h++) {
+			double decrease = 0;
+			for (int i = 0; i < n; i++) {
+				xt[i] = x[i] + alpha * d[i];
+				xt[i] = xt[i] < ik->lo[i] ? ik->lo[i] : xt[i] > ik->hi[i] ? ik->hi[i] : xt[i];
+				decrease += g[i] * (xt[i] - x[i]);
+			}
+			ft = ik_eval(ik, m, s, xt, gt, NULL);
+			run->res->evaluations++;
+			if (ft < f && ft <= f + ARMIJO * decrease) {
+				accepted = 1;
+				break;
+			}
+			double slope = decrease / alpha, curve = ft - f - decrease;
+			double shrink = curve > 0 ? -slope * alpha / (2 * curve) : 0.5;
+			alpha *= shrink < 0.1 ? 0.1 : shrink > 0.5 ? 0.5 : shrink;
+		}
+		if (!accepted) {
+			/* the failed trials moved the state; a stale metric may be to
+			 * blame, so try again from a fresh one, then from steepest
+			 * descent, before calling the point stationary */
+			if (fresh < 2) {
+				fresh++;
+				f = refresh_metric(ik, m, s, x, g, run->res);
+				if (fresh == 2)
+					hessian_reset(ik, 1e-3);
+				continue;
+			}
+			ik_eval(ik, m, s, x, NULL, NULL);
+			goto stationary;
+		}
+		fresh = 0;
+		double sy = 0, yy = 0;
+		for (int i = 0; i < n; i++) {
+			ik->sv[i] = xt[i] - x[i];
+			ik->yv[i] = ik->pin[i] ? 0 : gt[i] - g[i];
+			sy += ik->sv[i] * ik->yv[i];
+			yy += ik->yv[i] * ik->yv[i];
+		}
+		if (sy > 1e-12 * sqrt(yy) * sqrt(yy > 0 ? yy : 1) && sy > 0)
+			hessian_update(ik, sy);
+		memcpy(x, xt, sizeof *x * (size_t)n);
+		memcpy(g, gt, sizeof *g * (size_t)n);
+		f = ft;
+		trace(run, f);
+		continue;
+	stationary:
+		/* a local minimum that misses a goal: start again elsewhere if allowed */
+		if (f < best_f) {
+			best_f = f;
+			memcpy(ik->best, x, sizeof *x * (size_t)n);
+		}
+		if (restarts_left-- <= 0)
+			break;
+		run->res->restarts++;
+		since_start = 0;
+		fresh = 1;
+		for (int i = 0; i < n; i++)
+			x[i] = ik->lo[i] + (ik->hi[i] - ik->lo[i]) * uniform(&run->rng);
+		f = refresh_metric(ik, m, s, x, g, run->res);
+	}
+	/* leave the best posture found in the state */
+	if (!met && best_f < f) {
+		memcpy(x, ik->best, sizeof *x * (size_t)n);
+		f = ik_eval(ik, m, s, x, NULL, NULL);
+	}
+	*f_last = f;
+	return timed_out;
+}
+
+/* every segment below a variable of the prepared group, top-down, into dest */
+static int
+moving_segments(const struct ik *ik, const struct model *m, const struct state *s, int *dest)
+{
+	int n = 0;
+	memset(ik->seg_mark, 0, (size_t)m->nseg);
+	for (int i = 0; i < m->nseg; i++) {
+		int seg = s->seg_order[i], j = s->seg_root_joint[seg], moving = 0;
+		if (j >= 0) {
+			for (int d = m->jnt_dof0[j]; d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++)
+				moving |= ik->dof_var[d] >= 0;
+			moving |= ik->seg_mark[s->seg_parent[seg]];
+		}
+		if (moving) {
+			ik->seg_mark[seg] = 1;
+			dest[n++] = seg;
+		}
+	}
+	return n;
+}
+
+/* the centre of mass rides on its site during a round (§4.5.2) */
+static void
+attach_com(struct ik *ik, const struct state *s)
+{
+	for (int ci = 0; ci < ik->n; ci++) {
+		struct ik_con *c = &ik->con[ci];
+		if (!c->def.com_effector)
+			continue;
+		struct xform inv;
+		xform_inv(&s->site_xf[c->def.effector_site], &inv);
+		xform_apply(&inv, s->com, c->com_local);
+	}
+}
+
+struct ik_result
+ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_options *opt,
+	 const struct ik_clock *clock)
+{
+	struct ik_result res = { 0 };
+	struct group_run run = { opt, clock, 0, &res, opt->seed };
+	ik->rebuilt = 0;
+	res.status = IK_CONVERGED;
+	if (opt->budget_us && clock)
+		run.deadline = clock_now(clock) + opt->budget_us;
+	int max_group = 0, has_com = 0;
+	for (int ci = 0; ci < ik->n; ci++) {
+		const struct ik_constraint_def *d = &ik->con[ci].def;
+		if (!d->enabled)
+			continue;
+		max_group = d->group > max_group ? d->group : max_group;
+		has_com |= d->com_effector;
+	}
+	res.stepped = ik_apply_step_factor(ik, m, s, opt->step_pos, opt->step_ori);
+	double com_prev[3];
+	memcpy(com_prev, s->com, sizeof com_prev);
+	int rounds = has_com ? opt->balance_rounds : 1, first = 1;
+	for (int r = 0; r < rounds; r++) {
+		res.balance_rounds = r + 1;
+		attach_com(ik, s);
+		int timed_out = 0;
+		res.f_end = 0;
+		res.active_limits = 0;
+		/* groups in order: the body first, the hands after it (§D.1.5) */
+		for (int gidx = 0; gidx <= max_group && !timed_out; gidx++) {
+			if (ik_prepare(ik, m, s, gidx) == 0)
+				continue;
+			double f0, f1;
+			timed_out = minimise(ik, m, s, &run, &f0, &f1);
+			if (first)
+				res.f_start += f0;
+			res.f_end += f1;
+			for (int i = 0; i < ik->nvar; i++)
+				res.active_limits += ik->x[i] <= ik->lo[i] || ik->x[i] >= ik->hi[i];
+			/* bring the rest of the figure below the moved joints along */
+			kin_forward_segments(m, s, ik->move_seg, moving_segments(ik, m, s, ik->move_seg));
+		}
+		first = 0;
+		kin_com(m, s);
+		if (timed_out) {
+			res.status = IK_TIME_LIMIT;
+			break;
+		}
+		double moved = 0;
+		for (int i = 0; i < 3; i++)
+			moved += (s->com[i] - com_prev[i]) * (s->com[i] - com_prev[i]);
+		memcpy(com_prev, s->com, sizeof com_prev);
+		if (sqrt(moved) < opt->balance_tol)
+			break;
+	}
+	res.chains_rebuilt = ik->rebuilt;
+	/* met: every enabled constraint within tolerance of this solve's goals */
+	attach_com(ik, s);
+	res.met = 1;
+	for (int ci = 0; ci < ik->n; ci++) {
+		struct ik_con *c = &ik->con[ci];
+		const struct ik_constraint_def *d = &c->def;
+		if (!d->enabled || d->weight <= 0)
+			continue;
+		struct xform E, Gp, Go;
+		ik_con_frames(c, m, s, &E, &Gp, &Go);
+		ik_con_errors(c, &E, &Gp, &Go);
+		if ((d->pos != IK_POS_NONE && d->pos_weight > 0 && c->pos_err > opt->tol_pos) ||
+		    (d->ori != IK_ORI_NONE && d->pos_weight < 1 && c->ori_err > opt->tol_ori))
+			res.met = 0;
+	}
+	return res;
+}
+
+void
+ik_constraint_error(const struct ik *ik, const struct model *m, const struct state *s, int c,
+		    double *pos_err, double *ori_err)
+{
+	*pos_err = *ori_err = 0;
+	if (c < 0 || c >= ik->n)
+		return;
+	/* measured against the true goal, not this solve's intermediate one */
+	struct ik_con tmp = ik->con[c];
+	tmp.goal_pos = tmp.goal_ori = tmp.def.goal_xf;
+	if (tmp.def.com_effector) {
+		struct xform inv;
+		xform_inv(&s->site_xf[tmp.def.effector_site], &inv);
+		xform_apply(&inv, s->com, tmp.com_local);
+	}
+	struct xform E, Gp, Go;
+	ik_con_frames(&tmp, m, s, &E, &Gp, &Go);
+	ik_con_errors(&tmp, &E, &Gp, &Go);
+	*pos_err = tmp.pos_err;
+	*ori_err = tmp.ori_err;
+}
+
+int
+ik_active_limits(const struct ik *ik, const struct model *m, const struct state *s, int *dest,
+		 int max)
+{
+	int n = 0;
+	for (int d = 0; d < m->ndof && n < max; d++) {
+		if (s->q[d] > m->dof_lo[d] && s->q[d] < m->dof_hi[d])
+			continue;
+		/* only the variables of chains as they stand now */
+		int var = 0;
+		for (int g = 0; g < IK_MAX_GROUPS && !var; g++) {
+			const struct ik_chain *ch = &ik->chain[g];
+			var = ch->valid && ch->gen == ik->gen && ch->root_site == s->root_site &&
+			      ch->dof_var[d] >= 0 && ch->dof_var[d] < ch->nvar &&
+			      ch->var_dof[ch->dof_var[d]] == d;
+		}
+		if (var)
+			dest[n++] = d;
+	}
+	return n;
+}
