@@ -97,6 +97,7 @@ test_standing_human_is_balanced_between_its_feet(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct balance b;
 	assert_int_equal(balance_measure(m, s, BALANCE_CONTACT, &b), 0);
 	assert_true(b.npoly >= 4);
@@ -121,6 +122,7 @@ test_leaning_moves_the_parameters_the_right_way(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct balance b0, b;
 	balance_measure(m, s, BALANCE_CONTACT, &b0);
 	for (int k = 0; k < HUMAN_NSPINE; k++) {

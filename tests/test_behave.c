@@ -41,6 +41,7 @@ rig_make(struct rig *r, const struct behave_params *p)
 	r->m = human_build(&hd, err, sizeof err);
 	assert_non_null(r->m);
 	r->s = state_make(r->m);
+	kin_update(r->m, r->s);
 	r->ik = ik_make(r->m, 32);
 	assert_int_equal(behave_attach(&r->b, r->m, r->s, r->ik, p), 0);
 	r->opt = ik_default_options();

@@ -167,6 +167,7 @@ test_mass_limits_extent(void **unused)
 	for (int f = 0; f < 4; f++) {
 		struct model *m = build(defs[f].stature, defs[f].mass, defs[f].sex);
 		struct state *s = state_make(m);
+		kin_update(m, s);
 		double sum = 0;
 		for (int i = 0; i < m->nseg; i++) {
 			assert_true(m->seg_mass[i] > 0);
@@ -234,6 +235,7 @@ test_standing_balance(void **unused)
 	(void)unused;
 	struct model *m = build(1.75, 75, HUMAN_MALE);
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	const double *bl = site_pos(m, s, "foot_l.balance"), *br = site_pos(m, s, "foot_r.balance");
 	double H = 1.75, ratio = s->com[1] / H;
 	print_message("CoM height / stature %.4f\n", ratio);
@@ -270,6 +272,7 @@ test_standing_balance(void **unused)
 	/* the female figure balances as well */
 	struct model *f = build(1.628, 67.7, HUMAN_FEMALE);
 	struct state *t = state_make(f);
+	kin_update(f, t);
 	double rf = t->com[1] / 1.628;
 	print_message("female CoM height / stature %.4f\n", rf);
 	assert_true(rf > 0.53 && rf < 0.58);
@@ -301,6 +304,7 @@ test_symmetry(void **unused)
 	(void)unused;
 	struct model *m = build(1.75, 75, HUMAN_MALE);
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	char full[128], other[128];
 	int pairs = 0;
 	for (int k = 0; k < m->nsite; k++) {
@@ -330,6 +334,7 @@ test_symmetry(void **unused)
 	}
 	/* the mass distribution is symmetric: the centre of mass on the mid-plane */
 	state_reset(m, s);
+	kin_update(m, s);
 	assert_near(s->com[0], 0, 1e-12);
 	state_free(s);
 	model_free(m);
@@ -341,6 +346,7 @@ moved(const struct model *m, struct state *s, const char *jn, int d, double v, c
       double before[3], double after[3])
 {
 	state_reset(m, s);
+	kin_update(m, s);
 	memcpy(before, site_pos(m, s, sn), 3 * sizeof(double));
 	s->q[m->jnt_dof0[joint(m, jn)] + d] = v;
 	kin_update(m, s);
@@ -353,6 +359,7 @@ test_anatomical_sense(void **unused)
 	(void)unused;
 	struct model *m = build(1.75, 75, HUMAN_MALE);
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	double a[3], b[3];
 	for (int k = 0; k < 2; k++) {
 		const char *sfx = k ? "_r" : "_l";
@@ -453,7 +460,7 @@ test_reroot_keeps_frames(void **unused)
 	static const char *const roots[] = { "foot_l.balance", "pelvis.lower_torso", "hand_r.palm",
 					     "toes_l.toe", "foot_r.heel", HUMAN_SITE_ROOT };
 	for (size_t r = 0; r < sizeof roots / sizeof roots[0]; r++) {
-		assert_int_equal(state_set_root(m, s, site(m, roots[r])), 0);
+		assert_int_equal(kin_set_root(m, s, site(m, roots[r])), 0);
 		for (int k = 0; k < m->nsite; k++) {
 			for (int i = 0; i < 3; i++)
 				assert_near(s->site_xf[k].p[i], before[k].p[i], 1e-9);

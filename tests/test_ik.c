@@ -109,6 +109,7 @@ test_point_planar_arm_law_of_cosines(void **unused)
 	(void)unused;
 	struct model *m = planar_arm(1.0, 0.7, -M_PI, M_PI);
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = ik_make(m, 2);
 	struct ik_constraint_def c = ik_constraint_default_def();
 	c.effector_site = model_find_site(m, "l2.tip");
@@ -139,6 +140,7 @@ test_unreachable_goal_ends_closest_and_within_limits(void **unused)
 	/* elbow limited to [-1, 1]: a straight arm (0) is allowed */
 	struct model *m = planar_arm(1.0, 0.7, -1.0, 1.0);
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = ik_make(m, 1);
 	struct ik_constraint_def c = ik_constraint_default_def();
 	c.effector_site = model_find_site(m, "l2.tip");
@@ -162,6 +164,7 @@ test_unreachable_goal_ends_closest_and_within_limits(void **unused)
 	ik = ik_make(m, 1);
 	state_free(s);
 	s = state_make(m);
+	kin_update(m, s);
 	ik_add(ik, m, &c);
 	struct ik_result r = ik_solve(ik, m, s, &o, NULL);
 	for (int d = 0; d < m->ndof; d++) {
@@ -181,6 +184,7 @@ test_line_and_plane(void **unused)
 	(void)unused;
 	struct model *m = planar_arm(1.0, 0.7, -M_PI, M_PI);
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = ik_make(m, 1);
 	struct ik_constraint_def c = ik_constraint_default_def();
 	c.effector_site = model_find_site(m, "l2.tip");
@@ -218,6 +222,7 @@ test_frame_direction_and_aim_on_a_ball_joint(void **unused)
 	(void)unused;
 	struct model *m = ball();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = ik_make(m, 1);
 	struct ik_constraint_def c = ik_constraint_default_def();
 	int tip = model_find_site(m, "pointer.tip"), org = model_find_site(m, "pointer.origin");
@@ -242,6 +247,7 @@ test_frame_direction_and_aim_on_a_ball_joint(void **unused)
 
 	/* direction: the pointer's z axis along world (1, 1, 0)/sqrt2 */
 	state_reset(m, s);
+	kin_update(m, s);
 	c.ori = IK_DIRECTION;
 	xform_identity(&c.goal_xf);
 	c.goal_axis[0] = c.goal_axis[1] = sqrt(0.5);
@@ -255,6 +261,7 @@ test_frame_direction_and_aim_on_a_ball_joint(void **unused)
 
 	/* aim: the pointer's z axis at the point (2, -1, 2) */
 	state_reset(m, s);
+	kin_update(m, s);
 	c.ori = IK_AIM;
 	c.goal_xf.p[0] = 2;
 	c.goal_xf.p[1] = -1;
@@ -315,9 +322,10 @@ test_gradients_match_finite_differences_on_the_human(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = ik_make(m, 16);
 	random_posture(m, s, 3, 0.6);
-	state_set_root(m, s, site(m, "foot_l.balance"));
+	kin_set_root(m, s, site(m, "foot_l.balance"));
 	struct ik_constraint_def c = ik_constraint_default_def();
 	double axis[3] = { 0.48, 0.6, 0.64 };
 	/* position objectives with a fixed goal */
@@ -411,6 +419,7 @@ test_limits_hold_for_reachable_and_unreachable_goals(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = ik_make(m, 2);
 	struct ik_constraint_def c = ik_constraint_default_def();
 	c.effector_site = site(m, "hand_r.palm");
@@ -474,10 +483,12 @@ test_overconstrained_minimum_matches_nlopt(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	srand(11);
 	for (int trial = 0; trial < 6; trial++) {
 		struct ik *ik = ik_make(m, 4);
 		state_reset(m, s);
+		kin_update(m, s);
 		random_posture(m, s, 100 + trial, 0.3);
 		int palm = site(m, "hand_r.palm"), tip = site(m, "hand_r.fingertip");
 		struct ik_constraint_def c = ik_constraint_default_def();
@@ -594,6 +605,7 @@ test_energy_never_increases(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	double trace[512];
 	for (int t = 0; t < 5; t++) {
 		struct ik *ik = arm_problem(m, 0.1 * t);
@@ -602,6 +614,7 @@ test_energy_never_increases(void **unused)
 		o.trace = trace;
 		o.trace_cap = 512;
 		state_reset(m, s);
+		kin_update(m, s);
 		struct ik_result r = ik_solve(ik, m, s, &o, NULL);
 		assert_true(r.trace_len > 5);
 		for (int i = 1; i < r.trace_len; i++)
@@ -619,6 +632,8 @@ test_time_limit_cuts_after_one_iteration_and_replays_identically(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m), *s2 = state_make(m);
+	kin_update(m, s);
+	kin_update(m, s2);
 	struct ik *ik = arm_problem(m, 0);
 	struct ik_options o = ik_default_options();
 	o.step_pos = o.step_ori = 0;
@@ -649,6 +664,7 @@ test_step_factor_walks_the_effector_to_the_goal(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = ik_make(m, 1);
 	int palm = site(m, "hand_r.palm");
 	struct ik_constraint_def c = ik_constraint_default_def();
@@ -695,6 +711,7 @@ test_balance_with_feet_held_and_the_hand_moved(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = ik_make(m, 8);
 	struct stance st;
 	assert_int_equal(stance_standing(ik, m, s, &st), 0);
@@ -727,6 +744,7 @@ test_balance_with_feet_held_and_the_hand_moved(void **unused)
 	assert_true(r.balance_rounds >= 2); /* the hand moved the mass: at least one more round */
 	/* without balance, the same reach leaves the mass off the line */
 	state_reset(m, s);
+	kin_update(m, s);
 	ik_enable(ik, st.balance, 0);
 	ik_solve(ik, m, s, &o, NULL);
 	dx = s->com[0] - st.balance_point[0];
@@ -744,6 +762,7 @@ test_limit_spring_keeps_the_elbow_off_full_extension(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = ik_make(m, 1);
 	int palm = site(m, "hand_r.palm"), elbow = m->jnt_dof0[joint(m, "elbow_r")];
 	struct ik_constraint_def c = ik_constraint_default_def();
@@ -764,6 +783,7 @@ test_limit_spring_keeps_the_elbow_off_full_extension(void **unused)
 	assert_true(r.f_end < r.f_start);
 	ik_set_spring(ik, m, elbow, -1, 10 * DEG, 0); /* weight 0 removes it */
 	state_reset(m, s);
+	kin_update(m, s);
 	ik_solve(ik, m, s, &o, NULL);
 	assert_near(s->q[elbow], 0, 1e-6);
 	ik_free(ik);
@@ -779,12 +799,14 @@ test_solving_allocates_nothing(void **unused)
 	(void)unused;
 	struct model *m = human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct ik *ik = arm_problem(m, 0);
 	struct ik_options o = ik_default_options();
 	o.restarts = 3;
 #if COUNT_ALLOCS
 	long before = allocs;
 	struct state *probe = state_make(m); /* the hook sees allocations */
+	kin_update(m, probe);
 	assert_true(allocs > before);
 	state_free(probe);
 	before = allocs;

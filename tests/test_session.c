@@ -74,7 +74,7 @@ populate(struct env *e)
 	for (int d = 0; d < m->ndof; d++)
 		fg->state->q[d] = m->dof_lo[d] + (m->dof_hi[d] - m->dof_lo[d]) * rand() / RAND_MAX;
 	kin_update(m, fg->state);
-	state_set_root(m, fg->state, model_find_site(m, "foot_l.balance"));
+	kin_set_root(m, fg->state, model_find_site(m, "foot_l.balance"));
 	struct ik_constraint_def c = ik_constraint_default_def();
 	c.effector_site = model_find_site(m, "hand_r.palm");
 	c.goal_xf.p[0] = 0.123456789012345678;
@@ -218,11 +218,13 @@ test_posture_file_applies_by_name_and_checks_first(void **unused)
 	struct env_figure *fg = &e.fig[0];
 	uint64_t h = state_hash(fg->model, fg->state);
 	state_reset(fg->model, fg->state);
+	kin_update(fg->model, fg->state);
 	assert_int_equal(session_read_posture(&e, 0, buf, len, err, sizeof err), 0);
 	assert_true(state_hash(fg->model, fg->state) == h);
 	/* an unknown joint changes nothing */
 	const char *bad = "posture 1\njoint knee_l 0.1\njoint nojoint 1\nend\n";
 	state_reset(fg->model, fg->state);
+	kin_update(fg->model, fg->state);
 	uint64_t h0 = state_hash(fg->model, fg->state);
 	assert_int_equal(session_read_posture(&e, 0, bad, strlen(bad), err, sizeof err), -1);
 	assert_true(state_hash(fg->model, fg->state) == h0);

@@ -339,9 +339,11 @@ test_apply_totals(void **unused)
 	(void)unused;
 	struct model *m = build_human();
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	struct state *ref = state_make(m);
 	assert_non_null(s);
 	assert_non_null(ref);
+	kin_update(m, ref);
 	uint32_t seed = 12345;
 	/* a posture with every dof somewhere within its limits */
 	for (int d = 0; d < m->ndof; d++)
@@ -411,6 +413,7 @@ test_kinematic_sense(void **unused)
 	struct model *m = build_human();
 	struct state *s = state_make(m);
 	assert_non_null(s);
+	kin_update(m, s);
 	int head = model_find_site(m, HUMAN_SITE_HEAD), hseg = model_find_segment(m, "head");
 	assert_true(head >= 0 && hseg >= 0);
 	double p0[3];
@@ -522,6 +525,7 @@ test_rejects(void **unused)
 	struct model *ns = not_a_spine();
 	struct state *s = state_make(ns);
 	assert_non_null(s);
+	kin_update(ns, s);
 	assert_int_equal(spine_distribute(ns, &f, total, q, sf), -1);
 	assert_int_equal(spine_apply(ns, s, &f, total, sf), -1);
 	s->q[0] = 0.5;

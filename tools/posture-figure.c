@@ -258,7 +258,7 @@ set_root(const struct model *m, struct state *s, const char *root)
 		fprintf(stderr, "posture-figure: no site '%s' (give SEGMENT.SITE)\n", root);
 		return -1;
 	}
-	return state_set_root(m, s, site);
+	return kin_set_root(m, s, site);
 }
 
 int
@@ -281,6 +281,7 @@ main(int argc, char **argv)
 		model_free(m);
 		return 1;
 	}
+	kin_update(m, s);
 	/* the root is chosen in the initial posture and stays fixed in space */
 	if (set_root(m, s, o.root) < 0) {
 		rc = 1;

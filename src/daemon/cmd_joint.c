@@ -119,7 +119,7 @@ cmd_set_root(struct cmd_ctx *c)
 	if (fig < 0 || (k = site_of(c, fig, c->argv[1])) < 0)
 		return -1;
 	struct env_figure *f = &c->d->env.fig[fig];
-	state_set_root(f->model, f->state, k);
+	kin_set_root(f->model, f->state, k);
 	f->ik_stale = 1; /* chains run to the new root */
 	json_object_set_new(c->result, "root", json_string(c->argv[1]));
 	return 0;

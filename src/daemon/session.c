@@ -312,12 +312,7 @@ read_root(struct reader *r, struct env *e)
 	struct xform x;
 	if (site < 0 || read_xform(w->w[3], &x) < 0)
 		return fail(r, "bad root site or frame");
-	f->state->root_site = site;
-	f->state->root_xf = x;
-	/* rebuild the hierarchy for this root without moving it */
-	struct xform keep = x;
-	state_set_root(f->model, f->state, site);
-	f->state->root_xf = keep;
+	state_root_at(f->model, f->state, site, &x);
 	kin_update(f->model, f->state);
 	return 0;
 }
@@ -649,10 +644,8 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 	}
 	/* everything checked: apply */
 	memcpy(fg->state->q, q, sizeof *q * (size_t)m->ndof);
-	if (root >= 0) {
-		state_set_root(m, fg->state, root);
-		fg->state->root_xf = root_xf;
-	}
+	if (root >= 0)
+		state_root_at(m, fg->state, root, &root_xf);
 	kin_update(m, fg->state);
 	rc = 0;
 out:

@@ -52,12 +52,10 @@ seat_human(struct demo_scene *sc, char *err, size_t errlen)
 	}
 	/* the root (mid hip joints) on the H-point, the pelvis tilted back 20 deg */
 	double lean = -20 * DEG, q[4] = { sin(lean / 2), 0, 0, cos(lean / 2) };
-	s->root_site = model_find_site(h, HUMAN_SITE_ROOT);
-	mathx_quat_to_mat(q, s->root_xf.r);
-	memcpy(s->root_xf.p, sc->ss->site_xf[hp].p, sizeof s->root_xf.p);
-	state_set_root(h, s, s->root_site);
-	memcpy(s->root_xf.p, sc->ss->site_xf[hp].p, sizeof s->root_xf.p);
-	mathx_quat_to_mat(q, s->root_xf.r);
+	struct xform at;
+	mathx_quat_to_mat(q, at.r);
+	memcpy(at.p, sc->ss->site_xf[hp].p, sizeof at.p);
+	state_root_at(h, s, model_find_site(h, HUMAN_SITE_ROOT), &at);
 
 	/* a start near the answer: hips and knees bent, the upper body upright again */
 	s->q[dof_of(h, "hip_l", HUMAN_DOF_FLEX)] = s->q[dof_of(h, "hip_r", HUMAN_DOF_FLEX)] = 90 * DEG;

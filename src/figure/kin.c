@@ -137,6 +137,18 @@ kin_update(const struct model *m, struct state *s)
 	kin_com(m, s);
 }
 
+int
+kin_set_root(const struct model *m, struct state *s, int site)
+{
+	if (site < 0 || site >= m->nsite)
+		return -1;
+	struct xform at = s->site_xf[site];
+	if (state_root_at(m, s, site, &at) < 0)
+		return -1;
+	kin_update(m, s);
+	return 0;
+}
+
 /* column of dof d for a point x: rotation w x (x - p), translation w */
 static void
 dof_column(const struct model *m, const struct state *s, int d, int dir, const double x[3],

@@ -27,6 +27,14 @@ void kin_com(const struct model *m, struct state *s);
 void kin_update(const struct model *m, struct state *s);
 
 /*
+ * Makes `site` the root without moving anything (§A.4.2): its current
+ * global frame becomes the root frame, the hierarchy is rebuilt and the
+ * frames recomputed. Needs current global frames. Returns 0, or -1 for a
+ * bad site.
+ */
+int kin_set_root(const struct model *m, struct state *s, int site);
+
+/*
  * dest (3 x ndof): d(point)/dq for a point fixed to segment seg, given in
  * world coordinates. Needs kin_forward.
  */

@@ -1,10 +1,8 @@
-/* state.c - making, resetting and re-rooting figure state */
+/* state.c - making, resetting and re-rooting figure state (the frames are kin's) */
 #include "figure/state.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-#include "figure/kin.h"
 
 struct state *
 state_make(const struct model *m)
@@ -100,7 +98,6 @@ state_reset(const struct model *m, struct state *s)
 	s->root_site = m->root_site;
 	xform_from_pos_quat(m->root_pos, m->root_quat, &s->root_xf);
 	build_tree(m, s);
-	kin_update(m, s);
 }
 
 void
@@ -127,14 +124,13 @@ state_copy(const struct model *m, const struct state *src, struct state *dest)
 }
 
 int
-state_set_root(const struct model *m, struct state *s, int site)
+state_root_at(const struct model *m, struct state *s, int site, const struct xform *root_xf)
 {
 	if (site < 0 || site >= m->nsite)
 		return -1;
-	s->root_xf = s->site_xf[site];
+	s->root_xf = *root_xf;
 	s->root_site = site;
 	build_tree(m, s);
-	kin_update(m, s);
 	return 0;
 }
 

@@ -24,7 +24,7 @@ struct state {
 	int root_site;
 	struct xform root_xf;
 
-	/* hierarchy derived from the root (state_set_root) */
+	/* hierarchy derived from the root (state_root_at, kin_set_root) */
 	int *seg_order;      /* nseg: top-down order, root segment first */
 	int *seg_parent;     /* nseg: parent segment, -1 at the root */
 	int *seg_root_site;  /* nseg: site at the top of the segment */
@@ -47,23 +47,25 @@ struct state {
 
 /*
  * Makes a state for m in its initial posture (the model's displacements and
- * root), with global frames computed. Returns NULL when out of memory.
+ * root) with its hierarchy built. Global frames are not computed yet:
+ * kin_update does that. Returns NULL when out of memory.
  */
 struct state *state_make(const struct model *m);
 void state_free(struct state *s);
 
-/* puts the initial posture and root back and recomputes global frames */
+/* puts the initial posture and root back; the global frames are stale until kin_update */
 void state_reset(const struct model *m, struct state *s);
 
 /* copies every mutable value of src into dest (same model); no allocation */
 void state_copy(const struct model *m, const struct state *src, struct state *dest);
 
 /*
- * Makes `site` the root without moving anything: its current global frame
- * becomes the root frame and the hierarchy is rebuilt. Needs current global
- * frames (kin_forward); recomputes them. Returns 0, or -1 for a bad site.
+ * Makes `site` the root with the global frame root_xf and rebuilds the
+ * hierarchy from it; the global frames are stale until kin_update
+ * (kin_set_root re-roots without moving anything). Returns 0, or -1 for a
+ * bad site.
  */
-int state_set_root(const struct model *m, struct state *s, int site);
+int state_root_at(const struct model *m, struct state *s, int site, const struct xform *root_xf);
 
 /* clamps every joint value into its limits; returns how many were moved */
 int state_clamp(const struct model *m, struct state *s);

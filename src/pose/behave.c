@@ -246,7 +246,7 @@ set_root(struct behave *b, const struct model *m, struct state *s, struct ik *ik
 {
 	if (r == b->root)
 		return;
-	state_set_root(m, s, root_site_of(b, r));
+	kin_set_root(m, s, root_site_of(b, r));
 	for (int k = 0; k < 2; k++) {
 		struct ik_constraint_def d = *ik_get(ik, b->c_toe[k]);
 		if (b->p.foot[k] == FOOT_PIVOT)
@@ -268,7 +268,7 @@ behave_attach(struct behave *b, const struct model *m, struct state *s, struct i
 		return -1;
 	kin_update(m, s);
 	b->leg_length = s->site_xf[b->s_hip[0]].p[1];
-	state_set_root(m, s, b->s_toe[0]);
+	kin_set_root(m, s, b->s_toe[0]);
 	b->root = BALANCE_ROOT_LEFT_FOOT;
 	struct ik_constraint_def d;
 	for (int k = 0; k < 2; k++) {

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "figure/kin.h"
+
 void
 env_init(struct env *e)
 {
@@ -81,6 +83,7 @@ env_add_figure(struct env *e, struct model *model, const char *name, int is_huma
 		memset(f, 0, sizeof *f);
 		return ENV_FULL;
 	}
+	kin_update(model, f->state);
 	f->model = model;
 	f->gen = e->next_gen++;
 	snprintf(f->name, sizeof f->name, "%s", name);

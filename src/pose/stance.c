@@ -2,6 +2,7 @@
 #include "pose/stance.h"
 
 #include "figure/human.h"
+#include "figure/kin.h"
 
 int
 stance_standing(struct ik *ik, const struct model *m, struct state *s, struct stance *dest)
@@ -12,7 +13,7 @@ stance_standing(struct ik *ik, const struct model *m, struct state *s, struct st
 	if (bal_l < 0 || bal_r < 0 || lower < 0 || chest < 0 || spine < 0)
 		return -1;
 	dest->hand_l = dest->hand_r = -1;
-	state_set_root(m, s, bal_l);
+	kin_set_root(m, s, bal_l);
 
 	/* both feet hold position and orientation; the rooted one trivially */
 	struct ik_constraint_def c = ik_constraint_default_def();

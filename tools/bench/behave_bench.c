@@ -104,6 +104,8 @@ main(int argc, char **argv)
 		struct state *s = state_make(m);
 		struct ik *ik = ik_make(m, 32);
 		struct behave b;
+		if (m && s)
+			kin_update(m, s);
 		if (!m || !s || !ik || behave_attach(&b, m, s, ik, NULL) < 0) {
 			fprintf(stderr, "behave_bench: setup failed\n");
 			return 1;

@@ -60,6 +60,7 @@ main(int argc, char **argv)
 		return 1;
 	}
 	struct state *s = state_make(m);
+	kin_update(m, s);
 	double *q = malloc(sizeof *q * (size_t)m->ndof * MAX_POSTURES);
 	int n = 1000;
 	if (argc > 1) {

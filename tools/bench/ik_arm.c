@@ -100,7 +100,9 @@ arm_make(struct arm *a)
 		return -1;
 	}
 	a->s = state_make(a->m);
+	kin_update(a->m, a->s);
 	a->check = state_make(a->m);
+	kin_update(a->m, a->check);
 	a->palm = model_find_site(a->m, "hand_r.palm");
 	a->clavicle = model_find_joint(a->m, "clavicle_r");
 	if (!a->s || !a->check || a->palm < 0 || a->clavicle < 0) {
@@ -134,6 +136,7 @@ make_targets(struct arm *a, struct target *t, int n)
 	srand(1);
 	for (int i = 0; i < n; i++) {
 		state_reset(m, a->check);
+		kin_update(m, a->check);
 		for (int k = 0; k < NARM; k++) {
 			int d = a->dof[k];
 			t[i].q[k] = m->dof_lo[d] + (m->dof_hi[d] - m->dof_lo[d]) * rand() / RAND_MAX;
@@ -187,6 +190,7 @@ tally_solve(struct arm *a, struct tally *t, const double q[NARM], const struct t
 {
 	const struct model *m = a->m;
 	state_reset(m, a->check);
+	kin_update(m, a->check);
 	int inside = 1;
 	for (int k = 0; k < NARM; k++) {
 		int d = a->dof[k];
@@ -263,6 +267,7 @@ bench_ours(struct arm *a, const struct target *tg, int n, int max_iter, struct t
 	for (int i = 0; i < n + WARMUP; i++) {
 		const struct target *g = &tg[i < WARMUP ? i % n : i - WARMUP];
 		state_reset(m, a->s);
+		kin_update(m, a->s);
 		ik_set_goal(ik, 0, &g->xf);
 		double t0 = bench_now_us();
 		struct ik_result r = ik_solve(ik, m, a->s, &opt, &clock);
@@ -329,6 +334,7 @@ bench_nlopt(struct arm *a, const struct target *tg, int n, nlopt_algorithm alg, 
 		return -1;
 	}
 	state_reset(m, a->s);
+	kin_update(m, a->s);
 	int nv = ik_prepare(ik, m, a->s, 0);
 	int var_arm[NARM];
 	for (int i = 0; i < nv && nv == NARM; i++) {
@@ -363,6 +369,7 @@ bench_nlopt(struct arm *a, const struct target *tg, int n, nlopt_algorithm alg, 
 	for (int i = 0; i < n + WARMUP; i++) {
 		const struct target *g = &tg[i < WARMUP ? i % n : i - WARMUP];
 		state_reset(m, a->s);
+		kin_update(m, a->s);
 		ik_set_goal(ik, 0, &g->xf);
 		ctx.evals = 0;
 		double f = 0, t0 = bench_now_us();

@@ -63,6 +63,9 @@ main(void)
 		return 1;
 	}
 	struct state *s = state_make(m), *probe = state_make(m), *rest = state_make(m);
+	kin_update(m, s);
+	kin_update(m, probe);
+	kin_update(m, rest);
 	struct ik *ik = ik_make(m, 8);
 	struct stance st;
 	if (stance_standing(ik, m, s, &st) < 0 || stance_hand(ik, m, s, &st, 1) < 0) {
