@@ -1,55 +1,12 @@
 /*
- * behave_store.c - what outlives a solver refill and a restart: the
- * behaviour's constraints kept while the solver is cleared and added back,
- * and its parameters and state packed as numbers for sessions and the
- * journal.
+ * behave_store.c - a behaviour's parameters and state packed as numbers,
+ * for sessions and the journal, and rebuilt from them.
  */
 #include "pose/behave.h"
 
 #include <string.h>
 
 #include "pose/behave_internal.h"
-
-/* the constraints' index fields in their fixed order */
-int *
-behave_slot(struct behave *b, int k)
-{
-	int *slots[BEHAVE_NCON] = { &b->c_toe[0], &b->c_toe[1], &b->c_heel[0], &b->c_heel[1],
-				    &b->c_balance, &b->c_pelvis, &b->c_torso, &b->c_head,
-				    &b->c_eye[0], &b->c_eye[1], &b->c_hand[0], &b->c_hand[1] };
-	return slots[k];
-}
-
-void
-behave_keep_constraints(struct behave *b, const struct ik *ik)
-{
-	if (b->detached) /* def[] is already the truth */
-		return;
-	for (int k = 0; k < BEHAVE_NCON; k++) {
-		const struct ik_constraint_def *d = ik_get(ik, *behave_slot(b, k));
-		if (d)
-			b->def[k] = *d;
-	}
-}
-
-int
-behave_restore_constraints(struct behave *b, const struct model *m, struct ik *ik)
-{
-	for (int k = 0; k < BEHAVE_NCON; k++)
-		if ((*behave_slot(b, k) = ik_add(ik, m, &b->def[k])) < 0)
-			return -1;
-	b->detached = 0;
-	return 0;
-}
-
-const struct ik_constraint_def *
-behave_def(const struct behave *b, const struct ik *ik, int k)
-{
-	if (b->detached)
-		return &b->def[k];
-	const struct ik_constraint_def *d = ik_get(ik, *behave_slot((struct behave *)b, k));
-	return d ? d : &b->def[k];
-}
 
 /* the packed layout: parameters, then state; one list so a count checks it */
 #define PACK_PUT(x) (n < max ? (dest[n++] = (double)(x)) : (n++, 0.0))
