@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "daemon/cmd_ctx.h"
 #include "daemon/session.h"
 
 typedef int (*cmd_handler)(struct cmd_ctx *);
@@ -28,17 +29,6 @@ static const struct cmd_entry table[] = {
 };
 
 #define NCMD ((int)(sizeof table / sizeof *table))
-
-int
-cmd_fail(struct cmd_ctx *c, const char *code, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(c->msg, sizeof c->msg, fmt, ap);
-	va_end(ap);
-	c->code = code;
-	return -1;
-}
 
 /* the table entry for the words, or NULL with the error set */
 static const struct cmd_entry *
@@ -225,92 +215,4 @@ cmd_help(struct cmd_ctx *c)
 	}
 	json_object_set_new(c->result, "commands", list);
 	return 0;
-}
-
-/* ---- helpers for handlers ---------------------------------------------- */
-
-static int
-resolve_error(struct cmd_ctx *c, int err, const char *what, const char *ref)
-{
-	if (err == ENV_STALE)
-		return cmd_fail(c, "stale-id", "%s id '%.60s' is stale: what it named is gone", what, ref);
-	return cmd_fail(c, "not-found", "no %s '%.60s'", what, ref);
-}
-
-int
-cmd_side(struct cmd_ctx *c, const char *w)
-{
-	if (!strcmp(w, "left"))
-		return 0;
-	if (!strcmp(w, "right"))
-		return 1;
-	return cmd_fail(c, "bad-argument", "left or right, not '%.20s'", w);
-}
-
-int
-cmd_figure(struct cmd_ctx *c, const char *ref)
-{
-	int slot = env_find_figure(&c->d->env, ref);
-	if (slot < 0)
-		return resolve_error(c, slot, "figure", ref);
-	return slot;
-}
-
-int
-cmd_constraint(struct cmd_ctx *c, const char *ref)
-{
-	int slot = env_find_constraint(&c->d->env, ref);
-	if (slot < 0)
-		return resolve_error(c, slot, "constraint", ref);
-	return slot;
-}
-
-const char *
-cmd_key(struct cmd_ctx *c, const char *key)
-{
-	for (int i = 0; i < c->argc; i++)
-		if (words_is_key(c->argv[i], key))
-			return c->argv[i] + strlen(key) + 1;
-	return NULL;
-}
-
-int
-cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len)
-{
-	if (!rel[0] || rel[0] == '/')
-		return cmd_fail(c, "denied", "paths are relative to the state directory");
-	for (const char *p = rel; *p; p = strchr(p, '/') ? strchr(p, '/') + 1 : p + strlen(p))
-		if (!strncmp(p, "..", 2) && (p[2] == '/' || !p[2]))
-			return cmd_fail(c, "denied", "'..' may not appear in a path");
-	char root[PATH_MAX], full[PATH_MAX], real[PATH_MAX];
-	if (!realpath(c->d->state_dir, root))
-		return cmd_fail(c, "io", "state directory: %s", strerror(errno));
-	if ((size_t)snprintf(full, sizeof full, "%s/%s", root, rel) >= sizeof full || strlen(full) >= len)
-		return cmd_fail(c, "bad-argument", "path too long");
-	/* the file itself (reading) or its directory (writing) must resolve inside */
-	char probe[PATH_MAX];
-	snprintf(probe, sizeof probe, "%s", full);
-	if (for_write) {
-		char *slash = strrchr(probe, '/');
-		*slash = 0;
-		struct stat st;
-		if (!lstat(full, &st) && S_ISLNK(st.st_mode))
-			return cmd_fail(c, "denied", "'%.60s' is a symbolic link", rel);
-	}
-	if (!realpath(probe, real))
-		return cmd_fail(c, "not-found", "'%.60s': %s", rel, strerror(errno));
-	size_t n = strlen(root);
-	if (strncmp(real, root, n) || (real[n] != '/' && real[n] != 0))
-		return cmd_fail(c, "denied", "'%.60s' leads outside the state directory", rel);
-	snprintf(dest, len, "%s", full);
-	return 0;
-}
-
-json_t *
-cmd_vec(const double *v, int n)
-{
-	json_t *a = json_array();
-	for (int i = 0; i < n; i++)
-		json_array_append_new(a, json_real(v[i]));
-	return a;
 }

@@ -2,7 +2,7 @@
 #include <string.h>
 
 #include "pose/attach.h"
-#include "daemon/cmd.h"
+#include "daemon/cmd_ctx.h"
 
 int
 cmd_grab(struct cmd_ctx *c)
@@ -84,25 +84,4 @@ int
 cmd_release_foot(struct cmd_ctx *c)
 {
 	return release(c, ATTACH_FOOT);
-}
-
-/* the figure's attachments, for get behavior */
-json_t *
-cmd_attachments(const struct env *e, int fig)
-{
-	json_t *list = json_array();
-	for (int i = 0; i < ENV_MAX_ATTACH; i++) {
-		const struct env_attach *a = &e->att[i];
-		if (!a->used || a->fig != fig)
-			continue;
-		const struct env_figure *o = &e->fig[a->obj];
-		json_t *j = json_object();
-		json_object_set_new(j, "limb", json_string(a->limb == ATTACH_HAND ? "hand" : "foot"));
-		json_object_set_new(j, "side", json_string(a->side ? "right" : "left"));
-		json_object_set_new(j, "kind", json_string(a->kind == ATTACH_GRAB ? "grab" : "local"));
-		json_object_set_new(j, "object", json_string(o->name));
-		json_object_set_new(j, "segment", json_string(o->model->seg_name[a->seg]));
-		json_array_append_new(list, j);
-	}
-	return list;
 }

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "pose/attach.h"
-#include "daemon/cmd.h"
+#include "daemon/cmd_ctx.h"
 #include "figure/kin.h"
 
 /* the figure's slot when its behaviours are on, else -1 with the error set */

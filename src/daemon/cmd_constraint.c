@@ -1,7 +1,7 @@
 /* cmd_constraint.c - creating, moving, switching and listing constraints */
 #include <string.h>
 
-#include "daemon/cmd.h"
+#include "daemon/cmd_ctx.h"
 #include "figure/kin.h"
 
 static const char *const pos_names[] = { "none", "point", "line", "plane" };

@@ -2,7 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "daemon/cmd.h"
+#include "daemon/cmd_ctx.h"
 #include "figure/figure.h"
 #include "figure/kin.h"
 

@@ -2,7 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "daemon/cmd.h"
+#include "daemon/cmd_ctx.h"
 #include "pose/balance.h"
 #include "figure/kin.h"
 
@@ -122,39 +122,6 @@ cmd_set_root(struct cmd_ctx *c)
 	kin_set_root(f->model, f->state, k);
 	f->ik_stale = 1; /* chains run to the new root */
 	json_object_set_new(c->result, "root", json_string(c->argv[1]));
-	return 0;
-}
-
-int
-cmd_rotation(struct cmd_ctx *c, double r[9], int *given)
-{
-	const char *rot = cmd_key(c, "rot"), *yaw = cmd_key(c, "yaw");
-	double axis[3] = { 0, 1, 0 }, angle = 0, q[4];
-	*given = rot || yaw;
-	if (yaw && words_number(yaw, UNIT_ANGLE, &angle) < 0)
-		return cmd_fail(c, "bad-number", "yaw: an angle such as 30deg");
-	if (rot) {
-		const char *comma = strrchr(rot, ',');
-		char ax[128];
-		if (!comma || (size_t)(comma - rot) >= sizeof ax ||
-		    words_number(comma + 1, UNIT_ANGLE, &angle) < 0)
-			return cmd_fail(c, "bad-argument", "rot=AXIS,ANGLE with AXIS x, y, z or X,Y,Z");
-		memcpy(ax, rot, (size_t)(comma - rot));
-		ax[comma - rot] = 0;
-		if (strlen(ax) == 1 && strchr("xyz", ax[0])) {
-			axis[0] = axis[1] = axis[2] = 0;
-			axis[ax[0] - 'x'] = 1;
-		} else if (words_list(ax, UNIT_NONE, 3, axis) < 0) {
-			return cmd_fail(c, "bad-argument", "rot=AXIS,ANGLE with AXIS x, y, z or X,Y,Z");
-		}
-		double n = sqrt(mathx_dot(axis, axis));
-		if (!(n > 1e-12))
-			return cmd_fail(c, "bad-argument", "rot: the axis has no length");
-		for (int i = 0; i < 3; i++)
-			axis[i] /= n;
-	}
-	mathx_quat_axis_angle(axis, angle, q);
-	mathx_quat_to_mat(q, r);
 	return 0;
 }
 

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "daemon/cmd.h"
+#include "daemon/cmd_ctx.h"
 #include "daemon/session.h"
 #include "daemon/statefile.h"
 

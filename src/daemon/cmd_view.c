@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "daemon/cmd.h"
+#include "daemon/cmd_ctx.h"
 #include "daemon/daemon.h"
 #include "draw/sink.h"
 #include "daemon/statefile.h"

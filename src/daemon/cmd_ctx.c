@@ -1,0 +1,167 @@
+/*
+ * cmd_ctx.c - what every handler shares: the error it fails with, and the
+ * helpers that read its arguments and build parts of its reply.
+ */
+#include "daemon/cmd_ctx.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "pose/attach.h"
+
+int
+cmd_fail(struct cmd_ctx *c, const char *code, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(c->msg, sizeof c->msg, fmt, ap);
+	va_end(ap);
+	c->code = code;
+	return -1;
+}
+
+static int
+resolve_error(struct cmd_ctx *c, int err, const char *what, const char *ref)
+{
+	if (err == ENV_STALE)
+		return cmd_fail(c, "stale-id", "%s id '%.60s' is stale: what it named is gone", what, ref);
+	return cmd_fail(c, "not-found", "no %s '%.60s'", what, ref);
+}
+
+int
+cmd_side(struct cmd_ctx *c, const char *w)
+{
+	if (!strcmp(w, "left"))
+		return 0;
+	if (!strcmp(w, "right"))
+		return 1;
+	return cmd_fail(c, "bad-argument", "left or right, not '%.20s'", w);
+}
+
+int
+cmd_figure(struct cmd_ctx *c, const char *ref)
+{
+	int slot = env_find_figure(&c->d->env, ref);
+	if (slot < 0)
+		return resolve_error(c, slot, "figure", ref);
+	return slot;
+}
+
+int
+cmd_constraint(struct cmd_ctx *c, const char *ref)
+{
+	int slot = env_find_constraint(&c->d->env, ref);
+	if (slot < 0)
+		return resolve_error(c, slot, "constraint", ref);
+	return slot;
+}
+
+const char *
+cmd_key(struct cmd_ctx *c, const char *key)
+{
+	for (int i = 0; i < c->argc; i++)
+		if (words_is_key(c->argv[i], key))
+			return c->argv[i] + strlen(key) + 1;
+	return NULL;
+}
+
+int
+cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len)
+{
+	if (!rel[0] || rel[0] == '/')
+		return cmd_fail(c, "denied", "paths are relative to the state directory");
+	for (const char *p = rel; *p; p = strchr(p, '/') ? strchr(p, '/') + 1 : p + strlen(p))
+		if (!strncmp(p, "..", 2) && (p[2] == '/' || !p[2]))
+			return cmd_fail(c, "denied", "'..' may not appear in a path");
+	char root[PATH_MAX], full[PATH_MAX], real[PATH_MAX];
+	if (!realpath(c->d->state_dir, root))
+		return cmd_fail(c, "io", "state directory: %s", strerror(errno));
+	if ((size_t)snprintf(full, sizeof full, "%s/%s", root, rel) >= sizeof full || strlen(full) >= len)
+		return cmd_fail(c, "bad-argument", "path too long");
+	/* the file itself (reading) or its directory (writing) must resolve inside */
+	char probe[PATH_MAX];
+	snprintf(probe, sizeof probe, "%s", full);
+	if (for_write) {
+		char *slash = strrchr(probe, '/');
+		*slash = 0;
+		struct stat st;
+		if (!lstat(full, &st) && S_ISLNK(st.st_mode))
+			return cmd_fail(c, "denied", "'%.60s' is a symbolic link", rel);
+	}
+	if (!realpath(probe, real))
+		return cmd_fail(c, "not-found", "'%.60s': %s", rel, strerror(errno));
+	size_t n = strlen(root);
+	if (strncmp(real, root, n) || (real[n] != '/' && real[n] != 0))
+		return cmd_fail(c, "denied", "'%.60s' leads outside the state directory", rel);
+	snprintf(dest, len, "%s", full);
+	return 0;
+}
+
+json_t *
+cmd_vec(const double *v, int n)
+{
+	json_t *a = json_array();
+	for (int i = 0; i < n; i++)
+		json_array_append_new(a, json_real(v[i]));
+	return a;
+}
+
+int
+cmd_rotation(struct cmd_ctx *c, double r[9], int *given)
+{
+	const char *rot = cmd_key(c, "rot"), *yaw = cmd_key(c, "yaw");
+	double axis[3] = { 0, 1, 0 }, angle = 0, q[4];
+	*given = rot || yaw;
+	if (yaw && words_number(yaw, UNIT_ANGLE, &angle) < 0)
+		return cmd_fail(c, "bad-number", "yaw: an angle such as 30deg");
+	if (rot) {
+		const char *comma = strrchr(rot, ',');
+		char ax[128];
+		if (!comma || (size_t)(comma - rot) >= sizeof ax ||
+		    words_number(comma + 1, UNIT_ANGLE, &angle) < 0)
+			return cmd_fail(c, "bad-argument", "rot=AXIS,ANGLE with AXIS x, y, z or X,Y,Z");
+		memcpy(ax, rot, (size_t)(comma - rot));
+		ax[comma - rot] = 0;
+		if (strlen(ax) == 1 && strchr("xyz", ax[0])) {
+			axis[0] = axis[1] = axis[2] = 0;
+			axis[ax[0] - 'x'] = 1;
+		} else if (words_list(ax, UNIT_NONE, 3, axis) < 0) {
+			return cmd_fail(c, "bad-argument", "rot=AXIS,ANGLE with AXIS x, y, z or X,Y,Z");
+		}
+		double n = sqrt(mathx_dot(axis, axis));
+		if (!(n > 1e-12))
+			return cmd_fail(c, "bad-argument", "rot: the axis has no length");
+		for (int i = 0; i < 3; i++)
+			axis[i] /= n;
+	}
+	mathx_quat_axis_angle(axis, angle, q);
+	mathx_quat_to_mat(q, r);
+	return 0;
+}
+
+/* the figure's attachments, for get behavior */
+json_t *
+cmd_attachments(const struct env *e, int fig)
+{
+	json_t *list = json_array();
+	for (int i = 0; i < ENV_MAX_ATTACH; i++) {
+		const struct env_attach *a = &e->att[i];
+		if (!a->used || a->fig != fig)
+			continue;
+		const struct env_figure *o = &e->fig[a->obj];
+		json_t *j = json_object();
+		json_object_set_new(j, "limb", json_string(a->limb == ATTACH_HAND ? "hand" : "foot"));
+		json_object_set_new(j, "side", json_string(a->side ? "right" : "left"));
+		json_object_set_new(j, "kind", json_string(a->kind == ATTACH_GRAB ? "grab" : "local"));
+		json_object_set_new(j, "object", json_string(o->name));
+		json_object_set_new(j, "segment", json_string(o->model->seg_name[a->seg]));
+		json_array_append_new(list, j);
+	}
+	return list;
+}

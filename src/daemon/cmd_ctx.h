@@ -1,0 +1,49 @@
+/*
+ * cmd_ctx.h - what a command handler works with: its request (the daemon,
+ * the client, the words after verb and object), the reply it builds, the
+ * error it fails with, and the argument helpers every handler shares.
+ * The dispatch (cmd.h) sits above the handlers; this sits below them.
+ */
+#ifndef POSTURE_CMD_CTX_H
+#define POSTURE_CMD_CTX_H
+
+#include <jansson.h>
+#include <stddef.h>
+
+#include "daemon/daemon.h"
+#include "daemon/words.h"
+
+struct cmd_ctx {
+	struct daemon *d;
+	int client;       /* the requesting client, -1 for the journal and tools */
+	int argc;         /* words after verb and object */
+	char **argv;
+	json_t *result;   /* the handler's result object */
+	const char *code; /* error code when a handler fails */
+	char msg[512];
+	int quit;         /* the client asked to close */
+};
+
+/* every handler of proto/commands.def: 0, or cmd_fail(...) */
+#define CMD(verb, obj, mn, mx, fl, fn, usage, reply, summary) int fn(struct cmd_ctx *);
+#include "proto/commands.def"
+#undef CMD
+
+/* sets the error code and message; returns -1, for "return cmd_fail(...)" */
+int cmd_fail(struct cmd_ctx *c, const char *code, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+/* shared argument helpers for handlers */
+int cmd_figure(struct cmd_ctx *c, const char *ref);       /* slot or -1 with the error set */
+int cmd_constraint(struct cmd_ctx *c, const char *ref);   /* slot or -1 */
+int cmd_side(struct cmd_ctx *c, const char *w);          /* left 0, right 1, or -1 */
+const char *cmd_key(struct cmd_ctx *c, const char *key);  /* "key=value" among the args */
+/* path inside the state directory: 0 with the full path in dest, or -1 with the error set */
+int cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len);
+json_t *cmd_vec(const double *v, int n);
+/* a figure's hands and feet held to other figures, as a list */
+json_t *cmd_attachments(const struct env *e, int fig);
+/* "rot=AXIS,ANGLE" (AXIS x, y, z or X,Y,Z) or "yaw=ANGLE" among the args; *given 0 when neither */
+int cmd_rotation(struct cmd_ctx *c, double r[9], int *given);
+
+#endif
