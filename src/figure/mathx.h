@@ -69,6 +69,16 @@ xform_mul_inv(const struct xform *a, const struct xform *b, struct xform *dest)
 }
 
 /* transform a point */
+/* 1 when every number of the transform is finite */
+static inline int
+xform_finite(const struct xform *x)
+{
+	for (int i = 0; i < 9; i++)
+		if (!isfinite(x->r[i]))
+			return 0;
+	return isfinite(x->p[0]) && isfinite(x->p[1]) && isfinite(x->p[2]);
+}
+
 static inline void
 xform_apply(const struct xform *a, const double v[3], double dest[3])
 {

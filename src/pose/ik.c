@@ -5,31 +5,13 @@
 #include <string.h>
 
 #include "pose/ik_internal.h"
+#include "pose/ik_metric.h"
 #include "figure/kin.h"
 
 #define SETTLE_ITER 4 /* the window of opt->settle_rel */
 #define ARMIJO 1e-4     /* sufficient decrease of the line search */
 #define MAX_HALVINGS 12 /* line search trials before the point counts as stationary */
 #define MAX_STEP 0.5    /* radians or metres: the largest change of one variable per iteration */
-
-struct ik_constraint_def
-ik_constraint_default_def(void)
-{
-	struct ik_constraint_def d = { 0 };
-	d.effector_site = -1;
-	d.goal_site = -1;
-	xform_identity(&d.effector_offset);
-	xform_identity(&d.goal_xf);
-	d.pos = IK_POINT;
-	d.ori = IK_ORI_NONE;
-	d.goal_axis[1] = 1;
-	d.effector_axis[2] = 1;
-	d.pos_weight = 1;
-	d.weight = 1;
-	d.start_joint = -1;
-	d.enabled = 1;
-	return d;
-}
 
 struct ik_options
 ik_default_options(void)
@@ -75,11 +57,11 @@ ik_make(const struct model *m, int max_constraints)
 		return NULL;
 	size_t nd = (size_t)(m->ndof > 0 ? m->ndof : 1), cap = (size_t)max_constraints;
 	ik->cap = max_constraints;
-	ik->ndof = m->ndof;
-	ik->con = calloc(cap, sizeof *ik->con);
-	ik->spring_angle = calloc(nd, sizeof(double));
-	ik->spring_weight = calloc(nd, sizeof(double));
-	ik->spring_side = calloc(nd, 1);
+	ik->e.ndof = m->ndof;
+	ik->e.con = calloc(cap, sizeof *ik->e.con);
+	ik->e.spring_angle = calloc(nd, sizeof(double));
+	ik->e.spring_weight = calloc(nd, sizeof(double));
+	ik->e.spring_side = calloc(nd, 1);
 	int ok = 1;
 	for (int g = 0; g < IK_MAX_GROUPS; g++) {
 		struct ik_chain *ch = &ik->chain[g];
@@ -98,7 +80,7 @@ ik_make(const struct model *m, int max_constraints)
 	ik->seg_mark = calloc((size_t)m->nseg, 1);
 	double **work[] = { &ik->x, &ik->g, &ik->xt, &ik->gt, &ik->d, &ik->sv, &ik->yv, &ik->hy,
 			    &ik->best };
-	ok = ok && ik->con && ik->spring_angle && ik->spring_weight && ik->spring_side &&
+	ok = ok && ik->e.con && ik->e.spring_angle && ik->e.spring_weight && ik->e.spring_side &&
 	     ik->move_seg && ik->seg_mark;
 	for (size_t i = 0; i < sizeof work / sizeof *work; i++) {
 		*work[i] = calloc(nd, sizeof(double));
@@ -106,11 +88,11 @@ ik_make(const struct model *m, int max_constraints)
 	}
 	ik->H = calloc(nd * nd, sizeof(double));
 	ik->B = calloc(nd * nd, sizeof(double));
-	ik->jr = calloc(nd * IK_RESIDUAL_MAX, sizeof(double));
+	ik->e.jr = calloc(nd * IK_RESIDUAL_MAX, sizeof(double));
 	ik->pin = calloc(nd, 1);
 	ik->free_idx = calloc(nd, sizeof(int));
 	ik->H2 = calloc(nd * nd, sizeof(double));
-	if (!ok || !ik->H || !ik->B || !ik->jr || !ik->pin || !ik->free_idx || !ik->H2) {
+	if (!ok || !ik->H || !ik->B || !ik->e.jr || !ik->pin || !ik->free_idx || !ik->H2) {
 		ik_free(ik);
 		return NULL;
 	}
@@ -122,10 +104,10 @@ ik_free(struct ik *ik)
 {
 	if (!ik)
 		return;
-	free(ik->con);
-	free(ik->spring_angle);
-	free(ik->spring_weight);
-	free(ik->spring_side);
+	free(ik->e.con);
+	free(ik->e.spring_angle);
+	free(ik->e.spring_weight);
+	free(ik->e.spring_side);
 	for (int g = 0; g < IK_MAX_GROUPS; g++) {
 		struct ik_chain *ch = &ik->chain[g];
 		free(ch->var_dof);
@@ -150,72 +132,32 @@ ik_free(struct ik *ik)
 	free(ik->best);
 	free(ik->H);
 	free(ik->B);
-	free(ik->jr);
+	free(ik->e.jr);
 	free(ik->pin);
 	free(ik->free_idx);
 	free(ik->H2);
 	free(ik);
 }
 
-static int
-finite_xform(const struct xform *x)
-{
-	for (int i = 0; i < 9; i++)
-		if (!isfinite(x->r[i]))
-			return 0;
-	return isfinite(x->p[0]) && isfinite(x->p[1]) && isfinite(x->p[2]);
-}
-
-static int
-unit_axis(const double v[3])
-{
-	double n = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-	return isfinite(n) && fabs(n - 1) < 1e-9;
-}
-
-static int
-valid_def(const struct model *m, const struct ik_constraint_def *d)
-{
-	if (d->effector_site < 0 || d->effector_site >= m->nsite)
-		return 0;
-	if (d->goal_site < -1 || d->goal_site >= m->nsite)
-		return 0;
-	if (d->start_joint < -1 || d->start_joint >= m->njnt)
-		return 0;
-	if ((int)d->pos < IK_POS_NONE || d->pos > IK_PLANE || (int)d->ori < IK_ORI_NONE ||
-	    d->ori > IK_AIM)
-		return 0;
-	if (!finite_xform(&d->goal_xf) || !finite_xform(&d->effector_offset))
-		return 0;
-	if (!(d->pos_weight >= 0 && d->pos_weight <= 1) || !(d->weight >= 0) || !isfinite(d->weight))
-		return 0;
-	if ((d->pos == IK_LINE || d->pos == IK_PLANE || d->ori == IK_DIRECTION) &&
-	    !unit_axis(d->goal_axis))
-		return 0;
-	if ((d->ori == IK_DIRECTION || d->ori == IK_AIM) && !unit_axis(d->effector_axis))
-		return 0;
-	return d->group >= 0 && d->group < IK_MAX_GROUPS;
-}
-
 int
 ik_add(struct ik *ik, const struct model *m, const struct ik_constraint_def *def)
 {
-	if (ik->n >= ik->cap || !valid_def(m, def))
+	if (ik->e.n >= ik->cap || !ik_constraint_valid(m, def))
 		return -1;
-	memset(&ik->con[ik->n], 0, sizeof ik->con[ik->n]);
-	ik->con[ik->n].def = *def;
-	ik->con[ik->n].goal_pos = ik->con[ik->n].goal_ori = def->goal_xf;
+	memset(&ik->e.con[ik->e.n], 0, sizeof ik->e.con[ik->e.n]);
+	ik->e.con[ik->e.n].def = *def;
+	ik->e.con[ik->e.n].goal_pos = ik->e.con[ik->e.n].goal_ori = def->goal_xf;
 	ik->gen++;
-	return ik->n++;
+	return ik->e.n++;
 }
 
 int
 ik_set(struct ik *ik, const struct model *m, int c, const struct ik_constraint_def *def)
 {
-	if (c < 0 || c >= ik->n || !valid_def(m, def))
+	if (c < 0 || c >= ik->e.n || !ik_constraint_valid(m, def))
 		return -1;
-	ik->con[c].def = *def;
-	ik->con[c].goal_pos = ik->con[c].goal_ori = def->goal_xf;
+	ik->e.con[c].def = *def;
+	ik->e.con[c].goal_pos = ik->e.con[c].goal_ori = def->goal_xf;
 	ik->gen++;
 	return 0;
 }
@@ -223,40 +165,40 @@ ik_set(struct ik *ik, const struct model *m, int c, const struct ik_constraint_d
 const struct ik_constraint_def *
 ik_get(const struct ik *ik, int c)
 {
-	return c >= 0 && c < ik->n ? &ik->con[c].def : NULL;
+	return c >= 0 && c < ik->e.n ? &ik->e.con[c].def : NULL;
 }
 
 int
 ik_count(const struct ik *ik)
 {
-	return ik->n;
+	return ik->e.n;
 }
 
 void
 ik_clear(struct ik *ik)
 {
-	ik->n = 0;
+	ik->e.n = 0;
 	ik->gen++;
 }
 
 int
 ik_set_goal(struct ik *ik, int c, const struct xform *goal_xf)
 {
-	if (c < 0 || c >= ik->n || !finite_xform(goal_xf))
+	if (c < 0 || c >= ik->e.n || !xform_finite(goal_xf))
 		return -1;
-	ik->con[c].def.goal_xf = *goal_xf;
-	ik->con[c].goal_pos = ik->con[c].goal_ori = *goal_xf;
+	ik->e.con[c].def.goal_xf = *goal_xf;
+	ik->e.con[c].goal_pos = ik->e.con[c].goal_ori = *goal_xf;
 	return 0;
 }
 
 int
 ik_enable(struct ik *ik, int c, int on)
 {
-	if (c < 0 || c >= ik->n)
+	if (c < 0 || c >= ik->e.n)
 		return -1;
-	if (ik->con[c].def.enabled != !!on)
+	if (ik->e.con[c].def.enabled != !!on)
 		ik->gen++;
-	ik->con[c].def.enabled = !!on;
+	ik->e.con[c].def.enabled = !!on;
 	return 0;
 }
 
@@ -266,9 +208,9 @@ ik_set_spring(struct ik *ik, const struct model *m, int dof, int side, double an
 	if (dof < 0 || dof >= m->ndof || (side != -1 && side != 1) || !(angle > 0) ||
 	    !(weight >= 0) || !isfinite(angle) || !isfinite(weight))
 		return -1;
-	ik->spring_side[dof] = (signed char)side;
-	ik->spring_angle[dof] = angle;
-	ik->spring_weight[dof] = weight;
+	ik->e.spring_side[dof] = (signed char)side;
+	ik->e.spring_angle[dof] = angle;
+	ik->e.spring_weight[dof] = weight;
 	return 0;
 }
 
@@ -281,11 +223,11 @@ add_chain(struct ik *ik, const struct model *m, const struct state *s, int seg, 
 		for (int d = m->jnt_dof0[j]; d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++) {
 			if (ik->dof_var[d] >= 0 || m->dof_lo[d] == m->dof_hi[d])
 				continue;
-			ik->dof_var[d] = ik->nvar;
-			ik->var_dof[ik->nvar] = d;
-			ik->lo[ik->nvar] = m->dof_lo[d];
-			ik->hi[ik->nvar] = m->dof_hi[d];
-			ik->nvar++;
+			ik->dof_var[d] = ik->e.nvar;
+			ik->e.var_dof[ik->e.nvar] = d;
+			ik->e.lo[ik->e.nvar] = m->dof_lo[d];
+			ik->e.hi[ik->e.nvar] = m->dof_hi[d];
+			ik->e.nvar++;
 		}
 		if (j == start_joint)
 			return;
@@ -307,40 +249,40 @@ ik_prepare(struct ik *ik, const struct model *m, struct state *s, int group)
 		return 0;
 	struct ik_chain *ch = &ik->chain[group];
 	ik->group = group;
-	ik->var_dof = ch->var_dof;
+	ik->e.var_dof = ch->var_dof;
 	ik->dof_var = ch->dof_var;
-	ik->lo = ch->lo;
-	ik->hi = ch->hi;
-	ik->dyn_seg = ch->dyn_seg;
-	ik->moves_eff = ch->moves_eff;
-	ik->moves_goal = ch->moves_goal;
-	ik->in_group = ch->in_group;
+	ik->e.lo = ch->lo;
+	ik->e.hi = ch->hi;
+	ik->e.dyn_seg = ch->dyn_seg;
+	ik->e.moves_eff = ch->moves_eff;
+	ik->e.moves_goal = ch->moves_goal;
+	ik->e.in_group = ch->in_group;
 	if (ch->valid && ch->gen == ik->gen && ch->root_site == s->root_site) {
-		ik->nvar = ch->nvar;
-		ik->ndyn = ch->ndyn;
-		return ik->nvar;
+		ik->e.nvar = ch->nvar;
+		ik->e.ndyn = ch->ndyn;
+		return ik->e.nvar;
 	}
 	ik->rebuilt++;
-	ik->nvar = 0;
+	ik->e.nvar = 0;
 	for (int d = 0; d < m->ndof; d++)
 		ik->dof_var[d] = -1;
-	for (int ci = 0; ci < ik->n; ci++) {
-		const struct ik_constraint_def *d = &ik->con[ci].def;
-		ik->in_group[ci] = d->enabled && d->group == group && d->weight > 0;
-		if (ik->in_group[ci])
+	for (int ci = 0; ci < ik->e.n; ci++) {
+		const struct ik_constraint_def *d = &ik->e.con[ci].def;
+		ik->e.in_group[ci] = d->enabled && d->group == group && d->weight > 0;
+		if (ik->e.in_group[ci])
 			add_chain(ik, m, s, m->site_seg[d->effector_site], d->start_joint);
 	}
 	/* the segments to recompute: on a path to an effector or goal, below a variable */
 	memset(ik->seg_mark, 0, (size_t)m->nseg);
-	for (int ci = 0; ci < ik->n; ci++) {
-		if (!ik->in_group[ci])
+	for (int ci = 0; ci < ik->e.n; ci++) {
+		if (!ik->e.in_group[ci])
 			continue;
-		const struct ik_constraint_def *d = &ik->con[ci].def;
+		const struct ik_constraint_def *d = &ik->e.con[ci].def;
 		mark_path(ik, s, m->site_seg[d->effector_site]);
 		if (d->goal_site >= 0)
 			mark_path(ik, s, m->site_seg[d->goal_site]);
 	}
-	ik->ndyn = 0;
+	ik->e.ndyn = 0;
 	for (int i = 0; i < m->nseg; i++) {
 		int seg = s->seg_order[i], moving = 0;
 		for (int t = seg; s->seg_root_joint[t] >= 0 && !moving; t = s->seg_parent[t]) {
@@ -349,81 +291,53 @@ ik_prepare(struct ik *ik, const struct model *m, struct state *s, int group)
 				moving |= ik->dof_var[d] >= 0;
 		}
 		if (moving && ik->seg_mark[seg])
-			ik->dyn_seg[ik->ndyn++] = seg;
+			ik->e.dyn_seg[ik->e.ndyn++] = seg;
 	}
 	/* which variables move each effector and goal */
-	for (int ci = 0; ci < ik->n; ci++) {
-		if (!ik->in_group[ci])
+	for (int ci = 0; ci < ik->e.n; ci++) {
+		if (!ik->e.in_group[ci])
 			continue;
-		const struct ik_constraint_def *d = &ik->con[ci].def;
-		unsigned char *me = &ik->moves_eff[ci * ik->ndof], *mg = &ik->moves_goal[ci * ik->ndof];
-		for (int v = 0; v < ik->nvar; v++) {
-			me[v] = (unsigned char)kin_dof_moves(m, s, ik->var_dof[v],
+		const struct ik_constraint_def *d = &ik->e.con[ci].def;
+		unsigned char *me = &ik->e.moves_eff[ci * ik->e.ndof], *mg = &ik->e.moves_goal[ci * ik->e.ndof];
+		for (int v = 0; v < ik->e.nvar; v++) {
+			me[v] = (unsigned char)kin_dof_moves(m, s, ik->e.var_dof[v],
 							     m->site_seg[d->effector_site]);
 			mg[v] = d->goal_site >= 0 &&
-				kin_dof_moves(m, s, ik->var_dof[v], m->site_seg[d->goal_site]);
+				kin_dof_moves(m, s, ik->e.var_dof[v], m->site_seg[d->goal_site]);
 		}
 	}
 	ch->valid = 1;
 	ch->gen = ik->gen;
 	ch->root_site = s->root_site;
-	ch->nvar = ik->nvar;
-	ch->ndyn = ik->ndyn;
-	return ik->nvar;
+	ch->nvar = ik->e.nvar;
+	ch->ndyn = ik->e.ndyn;
+	return ik->e.nvar;
 }
 
 double
 ik_energy(struct ik *ik, const struct model *m, struct state *s, const double *x, double *grad)
 {
-	return ik_eval(ik, m, s, x, grad, NULL);
+	return ik_energy_eval(&ik->e, m, s, x, grad, NULL);
 }
 
 int
 ik_var_dof(const struct ik *ik, int i)
 {
-	return i >= 0 && i < ik->nvar ? ik->var_dof[i] : -1;
+	return i >= 0 && i < ik->e.nvar ? ik->e.var_dof[i] : -1;
 }
 
 static void
 clamp_into(const struct ik *ik, double *x)
 {
-	for (int i = 0; i < ik->nvar; i++)
-		x[i] = x[i] < ik->lo[i] ? ik->lo[i] : x[i] > ik->hi[i] ? ik->hi[i] : x[i];
+	for (int i = 0; i < ik->e.nvar; i++)
+		x[i] = x[i] < ik->e.lo[i] ? ik->e.lo[i] : x[i] > ik->e.hi[i] ? ik->e.hi[i] : x[i];
 }
 
 /* variable i rests on a bound that the gradient pushes it against */
 static int
 pinned(const struct ik *ik, const double *x, const double *g, int i)
 {
-	return (x[i] <= ik->lo[i] && g[i] > 0) || (x[i] >= ik->hi[i] && g[i] < 0);
-}
-
-static void
-hessian_reset(struct ik *ik, double scale)
-{
-	int n = ik->nvar;
-	memset(ik->H, 0, sizeof *ik->H * (size_t)n * (size_t)n);
-	for (int i = 0; i < n; i++)
-		ik->H[i * n + i] = scale;
-}
-
-/* BFGS update of the inverse Hessian with step sv and gradient change yv */
-static void
-hessian_update(struct ik *ik, double sy)
-{
-	int n = ik->nvar;
-	double *H = ik->H, *s = ik->sv, *y = ik->yv, *hy = ik->hy, yhy = 0;
-	for (int i = 0; i < n; i++) {
-		double acc = 0;
-		for (int j = 0; j < n; j++)
-			acc += H[i * n + j] * y[j];
-		hy[i] = acc;
-		yhy += y[i] * acc;
-	}
-	double a = (sy + yhy) / (sy * sy), b = 1 / sy;
-	for (int i = 0; i < n; i++)
-		for (int j = 0; j < n; j++)
-			H[i * n + j] += a * s[i] * s[j] - b * (hy[i] * s[j] + s[i] * hy[j]);
+	return (x[i] <= ik->e.lo[i] && g[i] > 0) || (x[i] >= ik->e.hi[i] && g[i] < 0);
 }
 
 static uint64_t
@@ -442,67 +356,6 @@ uniform(uint32_t *st)
 	x ^= x << 5;
 	*st = x;
 	return (x >> 8) * (1.0 / 16777216.0);
-}
-
-/*
- * H = (B_FF + mu I)^-1 over the free variables F, by Cholesky: the
- * Gauss-Newton metric of the sum of squares as the starting metric that
- * BFGS then refines. Pinned variables get zero rows and columns.
- * Returns -1 when the metric is not positive definite.
- */
-static int
-metric_invert(struct ik *ik)
-{
-	int n = ik->nvar, nf = 0;
-	double *B = ik->B, *H = ik->H, dmax = 0;
-	int *free_idx = ik->free_idx;
-	for (int i = 0; i < n; i++)
-		if (!ik->pin[i])
-			free_idx[nf++] = i;
-	for (int i = 0; i < nf; i++)
-		dmax = fmax(dmax, B[free_idx[i] * n + free_idx[i]]);
-	double mu = 1e-6 * dmax + 1e-12;
-	/* L L^T of the free block, in place in the lower triangle of a packed copy (uses H) */
-	double *L = ik->H2;
-	for (int i = 0; i < nf; i++) {
-		for (int j = 0; j <= i; j++) {
-			double acc = B[free_idx[i] * n + free_idx[j]] + (i == j ? mu : 0);
-			for (int k = 0; k < j; k++)
-				acc -= L[i * nf + k] * L[j * nf + k];
-			if (i == j) {
-				if (acc <= 0)
-					return -1;
-				L[i * nf + i] = sqrt(acc);
-			} else {
-				L[i * nf + j] = acc / L[j * nf + j];
-			}
-		}
-	}
-	/* M = L^-T row by row (row c of M is column c of L^-1: zero before c),
-	 * over B, which is spent; then H = M M^T. Rows keep the loops contiguous. */
-	double *M = B;
-	for (int c = 0; c < nf; c++) {
-		double *mc = &M[c * nf];
-		memset(mc, 0, sizeof *mc * (size_t)c);
-		mc[c] = 1 / L[c * nf + c];
-		for (int i = c + 1; i < nf; i++) {
-			const double *li = &L[i * nf];
-			double acc = 0;
-			for (int k = c; k < i; k++)
-				acc -= li[k] * mc[k];
-			mc[i] = acc / li[i];
-		}
-	}
-	memset(H, 0, sizeof *H * (size_t)n * (size_t)n);
-	for (int i = 0; i < nf; i++)
-		for (int j = 0; j <= i; j++) {
-			const double *mi = &M[i * nf], *mj = &M[j * nf];
-			double acc = 0;
-			for (int k = i; k < nf; k++)
-				acc += mi[k] * mj[k];
-			H[free_idx[i] * n + free_idx[j]] = H[free_idx[j] * n + free_idx[i]] = acc;
-		}
-	return 0;
 }
 
 struct group_run {
@@ -525,12 +378,12 @@ static double
 refresh_metric(struct ik *ik, const struct model *m, struct state *s, const double *x, double *g,
 	       struct ik_result *res)
 {
-	double f = ik_eval(ik, m, s, x, g, ik->B);
+	double f = ik_energy_eval(&ik->e, m, s, x, g, ik->B);
 	res->evaluations++;
-	for (int i = 0; i < ik->nvar; i++)
+	for (int i = 0; i < ik->e.nvar; i++)
 		ik->pin[i] = (unsigned char)pinned(ik, x, g, i);
-	if (metric_invert(ik) < 0)
-		hessian_reset(ik, 1);
+	if (ik_metric_invert(ik->e.nvar, ik->B, ik->pin, ik->H2, ik->free_idx, ik->H) < 0)
+		ik_metric_reset(ik->e.nvar, 1, ik->H);
 	return f;
 }
 
@@ -543,12 +396,12 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 	 double *f_first, double *f_last)
 {
 	const struct ik_options *opt = run->opt;
-	int n = ik->nvar, timed_out = 0, met = 0, since_start = 0;
+	int n = ik->e.nvar, timed_out = 0, met = 0, since_start = 0;
 	int restarts_left = ik->group < 32 && (opt->restart_groups >> ik->group & 1) ? opt->restarts : 0;
 	int fresh = 1; /* 1: the metric is fresh, 2: and steepest descent was tried */
 	double *x = ik->x, *g = ik->g, *xt = ik->xt, *gt = ik->gt, *d = ik->d;
 	for (int i = 0; i < n; i++)
-		x[i] = s->q[ik->var_dof[i]];
+		x[i] = s->q[ik->e.var_dof[i]];
 	clamp_into(ik, x);
 	double f = refresh_metric(ik, m, s, x, g, run->res), best_f = f;
 	*f_first = f;
@@ -556,7 +409,7 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 	memcpy(ik->best, x, sizeof *x * (size_t)n);
 	double recent[8]; /* the energy over the last iterations of this start */
 	for (;;) {
-		if ((met = ik_group_met(ik, opt->tol_pos, opt->tol_ori)))
+		if ((met = ik_energy_met(&ik->e, opt->tol_pos, opt->tol_ori)))
 			break;
 		if (since_start >= opt->max_iter) {
 			run->res->status = IK_ITER_LIMIT;
@@ -620,10 +473,10 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 			double decrease = 0;
 			for (int i = 0; i < n; i++) {
 				xt[i] = x[i] + alpha * d[i];
-				xt[i] = xt[i] < ik->lo[i] ? ik->lo[i] : xt[i] > ik->hi[i] ? ik->hi[i] : xt[i];
+				xt[i] = xt[i] < ik->e.lo[i] ? ik->e.lo[i] : xt[i] > ik->e.hi[i] ? ik->e.hi[i] : xt[i];
 				decrease += g[i] * (xt[i] - x[i]);
 			}
-			ft = ik_eval(ik, m, s, xt, gt, NULL);
+			ft = ik_energy_eval(&ik->e, m, s, xt, gt, NULL);
 			run->res->evaluations++;
 			if (ft < f && ft <= f + ARMIJO * decrease) {
 				accepted = 1;
@@ -641,10 +494,10 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 				fresh++;
 				f = refresh_metric(ik, m, s, x, g, run->res);
 				if (fresh == 2)
-					hessian_reset(ik, 1e-3);
+					ik_metric_reset(ik->e.nvar, 1e-3, ik->H);
 				continue;
 			}
-			ik_eval(ik, m, s, x, NULL, NULL);
+			ik_energy_eval(&ik->e, m, s, x, NULL, NULL);
 			goto stationary;
 		}
 		fresh = 0;
@@ -656,7 +509,7 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 			yy += ik->yv[i] * ik->yv[i];
 		}
 		if (sy > 1e-12 * sqrt(yy) * sqrt(yy > 0 ? yy : 1) && sy > 0)
-			hessian_update(ik, sy);
+			ik_metric_bfgs(ik->e.nvar, ik->sv, ik->yv, sy, ik->hy, ik->H);
 		memcpy(x, xt, sizeof *x * (size_t)n);
 		memcpy(g, gt, sizeof *g * (size_t)n);
 		f = ft;
@@ -674,13 +527,13 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 		since_start = 0;
 		fresh = 1;
 		for (int i = 0; i < n; i++)
-			x[i] = ik->lo[i] + (ik->hi[i] - ik->lo[i]) * uniform(&run->rng);
+			x[i] = ik->e.lo[i] + (ik->e.hi[i] - ik->e.lo[i]) * uniform(&run->rng);
 		f = refresh_metric(ik, m, s, x, g, run->res);
 	}
 	/* leave the best posture found in the state */
 	if (!met && best_f < f) {
 		memcpy(x, ik->best, sizeof *x * (size_t)n);
-		f = ik_eval(ik, m, s, x, NULL, NULL);
+		f = ik_energy_eval(&ik->e, m, s, x, NULL, NULL);
 	}
 	*f_last = f;
 	return timed_out;
@@ -711,8 +564,8 @@ moving_segments(const struct ik *ik, const struct model *m, const struct state *
 static void
 attach_com(struct ik *ik, const struct state *s)
 {
-	for (int ci = 0; ci < ik->n; ci++) {
-		struct ik_con *c = &ik->con[ci];
+	for (int ci = 0; ci < ik->e.n; ci++) {
+		struct ik_con *c = &ik->e.con[ci];
 		if (!c->def.com_effector)
 			continue;
 		struct xform inv;
@@ -732,14 +585,14 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 	if (opt->budget_us && clock)
 		run.deadline = clock_now(clock) + opt->budget_us;
 	int max_group = 0, has_com = 0;
-	for (int ci = 0; ci < ik->n; ci++) {
-		const struct ik_constraint_def *d = &ik->con[ci].def;
+	for (int ci = 0; ci < ik->e.n; ci++) {
+		const struct ik_constraint_def *d = &ik->e.con[ci].def;
 		if (!d->enabled)
 			continue;
 		max_group = d->group > max_group ? d->group : max_group;
 		has_com |= d->com_effector;
 	}
-	res.stepped = ik_apply_step_factor(ik, m, s, opt->step_pos, opt->step_ori);
+	res.stepped = ik_energy_step_factor(&ik->e, m, s, opt->step_pos, opt->step_ori);
 	double com_prev[3];
 	memcpy(com_prev, s->com, sizeof com_prev);
 	int rounds = has_com ? opt->balance_rounds : 1, first = 1;
@@ -758,8 +611,8 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 			if (first)
 				res.f_start += f0;
 			res.f_end += f1;
-			for (int i = 0; i < ik->nvar; i++)
-				res.active_limits += ik->x[i] <= ik->lo[i] || ik->x[i] >= ik->hi[i];
+			for (int i = 0; i < ik->e.nvar; i++)
+				res.active_limits += ik->x[i] <= ik->e.lo[i] || ik->x[i] >= ik->e.hi[i];
 			/* bring the rest of the figure below the moved joints along */
 			kin_forward_segments(m, s, ik->move_seg, moving_segments(ik, m, s, ik->move_seg));
 		}
@@ -780,8 +633,8 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 	/* met: every enabled constraint within tolerance of this solve's goals */
 	attach_com(ik, s);
 	res.met = 1;
-	for (int ci = 0; ci < ik->n; ci++) {
-		struct ik_con *c = &ik->con[ci];
+	for (int ci = 0; ci < ik->e.n; ci++) {
+		struct ik_con *c = &ik->e.con[ci];
 		const struct ik_constraint_def *d = &c->def;
 		if (!d->enabled || d->weight <= 0)
 			continue;
@@ -800,10 +653,10 @@ ik_constraint_error(const struct ik *ik, const struct model *m, const struct sta
 		    double *pos_err, double *ori_err)
 {
 	*pos_err = *ori_err = 0;
-	if (c < 0 || c >= ik->n)
+	if (c < 0 || c >= ik->e.n)
 		return;
 	/* measured against the true goal, not this solve's intermediate one */
-	struct ik_con tmp = ik->con[c];
+	struct ik_con tmp = ik->e.con[c];
 	tmp.goal_pos = tmp.goal_ori = tmp.def.goal_xf;
 	if (tmp.def.com_effector) {
 		struct xform inv;

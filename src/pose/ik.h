@@ -30,40 +30,7 @@
 
 #include "figure/model.h"
 #include "figure/state.h"
-
-enum ik_pos {
-	IK_POS_NONE,
-	IK_POINT, /* effector origin at the goal origin */
-	IK_LINE,  /* effector origin on the line through the goal origin along goal_axis */
-	IK_PLANE, /* effector origin on the plane through the goal origin, normal goal_axis */
-};
-
-enum ik_ori {
-	IK_ORI_NONE,
-	IK_FRAME,     /* effector axes parallel to the goal axes (3 dofs) */
-	IK_DIRECTION, /* effector_axis (effector frame) parallel to goal_axis (goal frame) */
-	IK_AIM,       /* effector_axis points from the effector origin at the goal origin */
-};
-
-/* a constraint's definition; fill from ik_constraint_default_def() */
-struct ik_constraint_def {
-	int effector_site;
-	struct xform effector_offset; /* effector frame relative to the site */
-	int goal_site;                /* -1: goal_xf is global; else goal_xf is relative to this site */
-	struct xform goal_xf;
-	enum ik_pos pos;
-	enum ik_ori ori;
-	double goal_axis[3];     /* line direction, plane normal, or direction, in the goal frame */
-	double effector_axis[3]; /* direction or aim vector, in the effector frame */
-	double pos_weight;       /* share of the position objective, 0..1 */
-	double weight;
-	int start_joint;         /* the chain runs from the effector up to this joint; -1: to the root */
-	int group;               /* solved in order of group, 0..3: 0 the body, 1 the hands (§D.1.5) */
-	int com_effector;        /* 1: the effector is the figure's centre of mass (§4.5.2) */
-	int enabled;
-};
-
-struct ik_constraint_def ik_constraint_default_def(void);
+#include "pose/ik_constraint.h"
 
 /* why a solve stopped */
 enum ik_status {

@@ -1,7 +1,7 @@
 /* ik_energy.c - the potential energy of the constraints, its gradient, and the step factor */
 #include <string.h>
 
-#include "pose/ik_internal.h"
+#include "pose/ik_energy.h"
 #include "figure/kin.h"
 
 void
@@ -242,21 +242,21 @@ con_residual_deriv(const struct ik_con *c, const struct con_terms *k, const doub
 
 /* limit spring of variable v (§D.1.6): zero until within its angle of the limit */
 static double
-spring_energy(const struct ik *ik, int v, double q, double *grad, double *metric)
+spring_energy(const struct ik_terms *e, int v, double q, double *grad, double *metric)
 {
-	int d = ik->var_dof[v];
-	double a = ik->spring_angle[d], w = ik->spring_weight[d], z;
+	int d = e->var_dof[v];
+	double a = e->spring_angle[d], w = e->spring_weight[d], z;
 	*grad = *metric = 0;
 	if (w <= 0)
 		return 0;
-	if (ik->spring_side[d] < 0) {
-		z = (ik->lo[v] + a - q) / a;
+	if (e->spring_side[d] < 0) {
+		z = (e->lo[v] + a - q) / a;
 		if (z <= 0)
 			return 0;
 		*grad = -2 * w * z / a;
 		*metric = 2 * w / (a * a);
 	} else {
-		z = (q - (ik->hi[v] - a)) / a;
+		z = (q - (e->hi[v] - a)) / a;
 		if (z <= 0)
 			return 0;
 		*grad = 2 * w * z / a;
@@ -274,41 +274,41 @@ ik_con_errors(struct ik_con *c, const struct xform *E, const struct xform *Gp,
 }
 
 double
-ik_eval(struct ik *ik, const struct model *m, struct state *s, const double *x, double *grad,
-	double *metric)
+ik_energy_eval(struct ik_terms *e, const struct model *m, struct state *s, const double *x,
+	       double *grad, double *metric)
 {
-	int n = ik->nvar;
+	int n = e->nvar;
 	for (int i = 0; i < n; i++)
-		s->q[ik->var_dof[i]] = x[i];
-	kin_forward_segments(m, s, ik->dyn_seg, ik->ndyn);
+		s->q[e->var_dof[i]] = x[i];
+	kin_forward_segments(m, s, e->dyn_seg, e->ndyn);
 	double f = 0;
 	if (grad)
 		memset(grad, 0, sizeof *grad * (size_t)n);
 	if (metric)
 		memset(metric, 0, sizeof *metric * (size_t)n * (size_t)n);
-	for (int ci = 0; ci < ik->n; ci++) {
-		if (!ik->in_group[ci])
+	for (int ci = 0; ci < e->n; ci++) {
+		if (!e->in_group[ci])
 			continue;
-		struct ik_con *c = &ik->con[ci];
+		struct ik_con *c = &e->con[ci];
 		struct xform E, Gp, Go;
 		struct con_terms k;
 		ik_con_frames(c, m, s, &E, &Gp, &Go);
 		f += con_residual(c, &E, &Gp, &Go, &k);
 		if (!grad || k.np + k.no == 0)
 			continue;
-		const unsigned char *me = &ik->moves_eff[ci * ik->ndof];
-		const unsigned char *mg = &ik->moves_goal[ci * ik->ndof];
+		const unsigned char *me = &e->moves_eff[ci * e->ndof];
+		const unsigned char *mg = &e->moves_goal[ci * e->ndof];
 		int nr = k.np + k.no;
 		double w[12];
 		for (int i = 0; i < nr; i++)
 			w[i] = i < k.np ? k.wp : k.wo;
 		for (int v = 0; v < n; v++) {
-			double *dr = &ik->jr[v * IK_RESIDUAL_MAX];
+			double *dr = &e->jr[v * IK_RESIDUAL_MAX];
 			if (!me[v] && !mg[v]) {
 				memset(dr, 0, sizeof *dr * IK_RESIDUAL_MAX);
 				continue;
 			}
-			int d = ik->var_dof[v];
+			int d = e->var_dof[v];
 			double ve[3] = { 0 }, we[3] = { 0 }, vg[3] = { 0 }, wg[3] = { 0 }, vgo[3] = { 0 };
 			if (me[v])
 				dof_motion(m, s, d, E.p, ve, we);
@@ -327,9 +327,9 @@ ik_eval(struct ik *ik, const struct model *m, struct state *s, const double *x, 
 			continue;
 		/* Gauss-Newton: 2 J^T W J over this constraint's residual */
 		for (int a = 0; a < n; a++) {
-			const double *ja = &ik->jr[a * IK_RESIDUAL_MAX];
+			const double *ja = &e->jr[a * IK_RESIDUAL_MAX];
 			for (int b = a; b < n; b++) {
-				const double *jb = &ik->jr[b * IK_RESIDUAL_MAX];
+				const double *jb = &e->jr[b * IK_RESIDUAL_MAX];
 				double acc = 0;
 				for (int i = 0; i < nr; i++)
 					acc += w[i] * ja[i] * jb[i];
@@ -337,11 +337,11 @@ ik_eval(struct ik *ik, const struct model *m, struct state *s, const double *x, 
 			}
 		}
 	}
-	ik->spring_f = 0;
+	e->spring_f = 0;
 	for (int v = 0; v < n; v++) {
-		double gs, hs, fs = spring_energy(ik, v, x[v], &gs, &hs);
+		double gs, hs, fs = spring_energy(e, v, x[v], &gs, &hs);
 		f += fs;
-		ik->spring_f += fs;
+		e->spring_f += fs;
 		if (grad)
 			grad[v] += gs;
 		if (metric)
@@ -355,15 +355,15 @@ ik_eval(struct ik *ik, const struct model *m, struct state *s, const double *x, 
 }
 
 int
-ik_group_met(const struct ik *ik, double tol_pos, double tol_ori)
+ik_energy_met(const struct ik_terms *e, double tol_pos, double tol_ori)
 {
 	/* a spring under tension is still working: only stationarity ends it */
-	if (ik->spring_f > 0)
+	if (e->spring_f > 0)
 		return 0;
-	for (int ci = 0; ci < ik->n; ci++) {
-		if (!ik->in_group[ci])
+	for (int ci = 0; ci < e->n; ci++) {
+		if (!e->in_group[ci])
 			continue;
-		const struct ik_con *c = &ik->con[ci];
+		const struct ik_con *c = &e->con[ci];
 		const struct ik_constraint_def *d = &c->def;
 		if (d->pos != IK_POS_NONE && d->pos_weight > 0 && c->pos_err > tol_pos)
 			return 0;
@@ -511,12 +511,12 @@ step_orientation(const struct ik_constraint_def *d, const struct xform *E, struc
 }
 
 int
-ik_apply_step_factor(struct ik *ik, const struct model *m, const struct state *s,
-		     double step_pos, double step_ori)
+ik_energy_step_factor(struct ik_terms *e, const struct model *m, const struct state *s,
+		      double step_pos, double step_ori)
 {
 	int stepped = 0;
-	for (int ci = 0; ci < ik->n; ci++) {
-		struct ik_con *c = &ik->con[ci];
+	for (int ci = 0; ci < e->n; ci++) {
+		struct ik_con *c = &e->con[ci];
 		const struct ik_constraint_def *d = &c->def;
 		c->goal_pos = c->goal_ori = d->goal_xf;
 		if (!d->enabled)
