@@ -39,7 +39,7 @@ $(1)_TOOLS := $$(patsubst tools/%.c,build/$(1)/bin/%,$$(TOOL_SRC)) build/$(1)/bi
 $(1)_TESTS := $$(patsubst tests/%.c,build/$(1)/tests/%,$$(TEST_SRC))
 $(1)_BENCH := $$(patsubst tools/bench/%.c,build/$(1)/bench/%,$$(BENCH_SRC))
 
-build/$(1)/%.o: %.c
+build/$(1)/%.o: %.c | build/.deps-apt
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) -c $$< -o $$@
 
@@ -69,7 +69,7 @@ endef
 $(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,))
 $(eval $(call variant,san,-O1 -g $(SAN),$(SAN)))
 
-.PHONY: all run test unit-test system-test bench deps check clean
+.PHONY: all run test layer-check unit-test system-test bench deps check clean
 .SECONDARY:
 
 all: $(rel_LIB) $(rel_TOOLS) $(rel_TESTS) $(rel_BENCH)
@@ -103,7 +103,11 @@ run: deps build/rel/bin/postured build/rel/bin/posture-figure
 		--frames build/run/frames --init tools/kiosk.init --library src/figure/library
 
 # ---- tests ---------------------------------------------------------------
-test: deps unit-test system-test
+test: deps layer-check unit-test system-test
+
+# every include points down the layers, and no two modules need each other
+layer-check:
+	python3 tools/layer-check
 
 unit-test: $(rel_TESTS) $(san_TESTS) $(rel_TOOLS)
 	@set -e; for t in $(rel_TESTS) $(san_TESTS); do \
@@ -112,9 +116,9 @@ unit-test: $(rel_TESTS) $(san_TESTS) $(rel_TOOLS)
 	done
 
 system-test: $(rel_TOOLS) | deps
-	POSTURE_BUILD=build/rel $(PY) -m pytest -q tests/system
+	POSTURE_BUILD=build/rel $(PY) -m pytest -q tests/system tests/tools
 
-check: unit-test
+check: layer-check unit-test
 
 # ---- benchmarks ----------------------------------------------------------
 # peers in C++ against the libraries the pip wheels ship (Pinocchio, Boost)
