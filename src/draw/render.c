@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "draw/font.h"
+#include "draw/pack.h"
 #include "draw/render.h"
 #include "draw/render_glsl.h"
 #include "draw/tess.h"
@@ -29,24 +30,6 @@
 #define XRAY_ALPHA 0.3f    /* icons behind geometry */
 #define FLOOR_HALF 60.0f   /* the floor quad's half size, m */
 #define TEXT_QUADS (VIEW_MAX_TEXT * VIEW_TEXT_LEN * 5) /* glyphs and their 4 outline copies */
-
-/*
- * Instances are packed every frame into one world-space vertex buffer (CPU
- * transform of positions and normals), so the scene is three draw calls
- * (opaque shadow casters, other opaque, transparent) instead of one per
- * instance: on llvmpipe each draw call costs tens of microseconds, far
- * more than transforming a few tens of thousands of vertices.
- */
-#define PACK_MAX_VERT (1 << 18) /* vertices of all instances of a frame */
-#define PACK_MAX_IDX (1 << 20)  /* their indices */
-
-struct pack_vertex {
-	float p[3], n[3];
-	uint8_t c[4];
-};
-
-/* PACK_SHADOW: the casters again, in their coarse versions (shadows need no detail) */
-enum pack_class { PACK_CAST, PACK_OPAQUE, PACK_CLEAR, PACK_SHADOW, PACK_N };
 
 /* a text vertex: pixel position, atlas uv, colour */
 struct text_vertex {
@@ -74,11 +57,7 @@ struct render {
 	struct tess_mesh mesh[RENDER_MAX_MESH]; /* kept on the CPU for packing */
 	int lod[RENDER_MAX_MESH];               /* the coarse version of each mesh */
 	int nmesh;
-	struct pack_vertex *pv;
-	unsigned *pi;
-	int range[PACK_N][2]; /* first index and count of each class */
-	int order[VIEW_MAX_INST]; /* instances front to back (early depth rejection) */
-	float key[VIEW_MAX_INST];
+	struct pack pack; /* the instances, packed every frame (pack.h) */
 	GLuint pvbo, pibo;
 
 	GLuint stream;  /* draw-list vertices + background + floor */
@@ -252,9 +231,7 @@ render_make(const struct render_def *d, char *err, size_t errlen)
 	r->shadows = d->shadows;
 	r->buf = calloc((size_t)d->max_w * (size_t)d->max_h, 4);
 	r->tvert = malloc(sizeof *r->tvert * 6 * TEXT_QUADS);
-	r->pv = malloc(sizeof *r->pv * PACK_MAX_VERT);
-	r->pi = malloc(sizeof *r->pi * PACK_MAX_IDX);
-	if (!r->buf || !r->tvert || !r->pv || !r->pi) {
+	if (!r->buf || !r->tvert || pack_init(&r->pack) < 0) {
 		snprintf(err, errlen, "out of memory");
 		goto fail;
 	}
@@ -342,11 +319,11 @@ render_make(const struct render_def *d, char *err, size_t errlen)
 		     NULL, GL_STREAM_DRAW);
 	glGenBuffers(1, &r->pvbo);
 	glBindBuffer(GL_ARRAY_BUFFER, r->pvbo);
-	glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof *r->pv * PACK_MAX_VERT), NULL,
+	glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof *r->pack.pv * PACK_MAX_VERT), NULL,
 		     GL_STREAM_DRAW);
 	glGenBuffers(1, &r->pibo);
 	glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->pibo);
-	glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof *r->pi * PACK_MAX_IDX), NULL,
+	glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof *r->pack.pi * PACK_MAX_IDX), NULL,
 		     GL_STREAM_DRAW);
 	glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
 	glBindBuffer(GL_ARRAY_BUFFER, 0);
@@ -395,8 +372,7 @@ render_free(struct render *r)
 	for (int i = 0; i < r->nmesh; i++)
 		tess_free(&r->mesh[i]);
 	font_free(r->font);
-	free(r->pv);
-	free(r->pi);
+	pack_free(&r->pack);
 	free(r->tvert);
 	free(r->buf);
 	free(r);
@@ -434,115 +410,23 @@ to_eye(const float view[16], const float w[3], float dest[3])
 		dest[i] = view[i] * w[0] + view[4 + i] * w[1] + view[8 + i] * w[2];
 }
 
-/* the class of an instance: opaque and casting a shadow, opaque, or transparent */
-static enum pack_class
-pack_class(const struct view_instance *in)
-{
-	if (in->rgba[3] < 1)
-		return PACK_CLEAR;
-	return in->shadow ? PACK_CAST : PACK_OPAQUE;
-}
-
-static uint8_t
-to_byte(float v)
-{
-	return (uint8_t)(v <= 0 ? 0 : v >= 1 ? 255 : v * 255 + 0.5f);
-}
-
-/* one instance's vertices, in the world, and its indices; 0, or -1 when it does not fit */
-static int
-pack_instance(struct render *r, const struct view_instance *in, int mesh, int *nv, int *ni)
-{
-	const struct tess_mesh *m = &r->mesh[mesh];
-	if (*nv + m->nvert > PACK_MAX_VERT || *ni + m->nidx > PACK_MAX_IDX)
-		return -1;
-	/* normals by the inverse transpose of the linear part */
-	mat3 a, inv;
-	const float *t = in->mat;
-	for (int j = 0; j < 3; j++)
-		for (int i = 0; i < 3; i++)
-			a[j][i] = t[4 * j + i];
-	if (fabsf(glm_mat3_det(a)) < 1e-30f)
-		return 0;
-	glm_mat3_inv(a, inv);
-	uint8_t c[4] = { to_byte(in->rgba[0]), to_byte(in->rgba[1]), to_byte(in->rgba[2]),
-			 to_byte(in->rgba[3]) };
-	struct pack_vertex *v = r->pv + *nv;
-	for (int k = 0; k < m->nvert; k++, v++) {
-		const float *s = m->vn + 6 * k;
-		for (int i = 0; i < 3; i++) {
-			v->p[i] = t[i] * s[0] + t[4 + i] * s[1] + t[8 + i] * s[2] + t[12 + i];
-			/* (a^-1)^T n: row i of a^-1 transposed is column i of inv */
-			v->n[i] = inv[i][0] * s[3] + inv[i][1] * s[4] + inv[i][2] * s[5];
-		}
-		memcpy(v->c, c, 4);
-	}
-	unsigned base = (unsigned)*nv;
-	for (int k = 0; k < m->nidx; k++)
-		r->pi[*ni + k] = m->idx[k] + base;
-	*nv += m->nvert;
-	*ni += m->nidx;
-	return 0;
-}
-
-/* r->order: the instances sorted by distance along the line of sight, nearest first */
+/* the packed arrays into their buffers */
 static void
-sort_front_to_back(struct render *r, const struct drawlist *dl, const float view[16])
+upload_packed(const struct render *r)
 {
-	int n = dl->ninst;
-	for (int i = 0; i < n; i++) {
-		const float *t = dl->inst[i].mat + 12;
-		r->key[i] = -(view[2] * t[0] + view[6] * t[1] + view[10] * t[2] + view[14]);
-		r->order[i] = i;
-	}
-	/* insertion sort: a few hundred items, no allocation */
-	for (int i = 1; i < n; i++) {
-		int o = r->order[i];
-		float k = r->key[o];
-		int j = i;
-		for (; j > 0 && r->key[r->order[j - 1]] > k; j--)
-			r->order[j] = r->order[j - 1];
-		r->order[j] = o;
-	}
-}
-
-/* packs every instance by class (transparent ones back to front) and uploads the lot */
-static void
-pack(struct render *r, const struct drawlist *dl, const float view[16])
-{
-	int nv = 0, ni = 0;
-	sort_front_to_back(r, dl, view);
-	for (int c = 0; c < PACK_N; c++) {
-		r->range[c][0] = ni;
-		for (int o = 0; o < dl->ninst; o++) {
-			int i = c == PACK_CLEAR ? r->order[dl->ninst - 1 - o] : r->order[o];
-			const struct view_instance *in = &dl->inst[i];
-			if (in->mesh < 0 || in->mesh >= r->nmesh)
-				continue;
-			if (c == PACK_SHADOW ? pack_class(in) != PACK_CAST
-					     : pack_class(in) != (enum pack_class)c)
-				continue;
-			int mesh = c == PACK_SHADOW ? r->lod[in->mesh] : in->mesh;
-			if (pack_instance(r, in, mesh, &nv, &ni))
-				break;
-			if (c != PACK_SHADOW) {
-				r->stats.instances++;
-				r->stats.triangles += r->mesh[mesh].nidx / 3;
-			}
-		}
-		r->range[c][1] = ni - r->range[c][0];
-	}
+	const struct pack *p = &r->pack;
 	glBindBuffer(GL_ARRAY_BUFFER, r->pvbo);
-	glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof *r->pv * (size_t)nv), r->pv);
+	glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof *p->pv * (size_t)p->nv), p->pv);
 	glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->pibo);
-	glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof *r->pi * (size_t)ni), r->pi);
+	glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof *p->pi * (size_t)p->ni), p->pi);
 }
 
 /* draws classes c0..c1 of the packed instances (buffers bound) */
 static void
 draw_packed(const struct render *r, int c0, int c1)
 {
-	int first = r->range[c0][0], count = r->range[c1][0] + r->range[c1][1] - first;
+	const int(*range)[2] = r->pack.range;
+	int first = range[c0][0], count = range[c1][0] + range[c1][1] - first;
 	if (count > 0)
 		glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT,
 			       (void *)(sizeof(unsigned) * (size_t)first));
@@ -743,7 +627,10 @@ render_frame(struct render *r, const struct drawlist *dl, uint64_t t_us, struct 
 	int shadows = r->shadows && dl->floor;
 	glEnableClientState(GL_VERTEX_ARRAY);
 	glEnableClientState(GL_COLOR_ARRAY);
-	pack(r, dl, view);
+	pack_drawlist(&r->pack, dl, view, r->mesh, r->lod, r->nmesh);
+	r->stats.instances = r->pack.instances;
+	r->stats.triangles = r->pack.triangles;
+	upload_packed(r);
 	packed_pointers(r);
 	glDisable(GL_DEPTH_TEST);
 	glDisable(GL_BLEND);
