@@ -11,16 +11,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "pose/attach.h"
 #include "daemon/cmd.h"
-#include "daemon/jbuf.h"
-#include "figure/kin.h"
+#include "daemon/events.h"
 #include "daemon/notify.h"
-#include "draw/render.h"
-#include "draw/sink.h"
-#include "draw/view.h"
-
-#define IK_LIMITS_REPORTED 256 /* dofs listed as resting on a limit */
+#include "daemon/scene.h"
+#include "pose/attach.h"
 
 struct loop {
 	struct daemon d;
@@ -32,24 +27,8 @@ struct loop {
 	uint64_t virtual_us;  /* the clock of settle's frames */
 	uint64_t fps_t0, fps_frames;
 	uint64_t watchdog_us, watchdog_last;
-	struct jbuf ev; /* events are written here: no allocation in a frame */
-	uint64_t told_hash[ENV_MAX_FIGURES]; /* postures as the last posture events told them */
-	uint32_t told_gen[ENV_MAX_FIGURES];
-	struct scene {
-		struct render *r; /* made when first needed */
-		int failed;       /* OSMesa could not start: no pictures */
-		struct drawlist *dl;
-		int mesh_base[ENV_MAX_FIGURES];
-		uint32_t mesh_gen[ENV_MAX_FIGURES];
-		struct sink *png[ENV_MAX_VIEWS];
-		char png_name[ENV_MAX_VIEWS][MODEL_NAME_MAX];
-		struct sink *fb;
-		struct sink_png_encoder enc; /* frame events */
-		uint64_t last_png_us, last_event_us;
-		int dirty;
-	} scene;
-	const char *frames_dir;
-	int limit_dofs[IK_LIMITS_REPORTED];
+	struct events events; /* what the clients subscribed to */
+	struct scene scene;   /* the views' pictures */
 	int stop;
 };
 
@@ -68,221 +47,6 @@ virtual_now(void *ctx)
 {
 	struct loop *L = ctx;
 	return L->virtual_us += 20;
-}
-
-/* ---- events ------------------------------------------------------------------ */
-
-static int
-has_subscribers(const struct loop *L, unsigned kind)
-{
-	for (int i = 0; i < SERVER_MAX_CLIENTS; i++)
-		if (L->srv.c[i].fd >= 0 && (L->srv.c[i].subs & kind) && !L->srv.c[i].closing)
-			return 1;
-	return 0;
-}
-
-/* queues the event in L->ev (a complete JSON object) to every subscriber of kind */
-static void
-send_event(struct loop *L, unsigned kind)
-{
-	if (L->ev.overflow) {
-		fprintf(stderr, "postured: an event did not fit its buffer; not sent\n");
-		return;
-	}
-	jbuf_raw(&L->ev, "\n");
-	for (int i = 0; i < SERVER_MAX_CLIENTS; i++) {
-		struct client *c = &L->srv.c[i];
-		if (c->fd < 0 || !(c->subs & kind) || c->closing)
-			continue;
-		if (server_queue(&L->srv, i, L->ev.buf, L->ev.len) < 0) {
-			fprintf(stderr, "postured: client %d does not read its events: dropped\n", i);
-			server_drop(&L->srv, i);
-		}
-	}
-}
-
-/* starts event kind in L->ev: {"event":kind,"frame":N[,"figure":name] */
-static struct jbuf *
-event_begin(struct loop *L, const char *kind, const char *figure)
-{
-	struct jbuf *j = &L->ev;
-	jbuf_reset(j);
-	jbuf_raw(j, "{\"event\":");
-	jbuf_str(j, kind);
-	jbuf_key(j, "frame", 0);
-	jbuf_int(j, (long long)L->d.stats.frame);
-	if (figure) {
-		jbuf_key(j, "figure", 0);
-		jbuf_str(j, figure);
-	}
-	return j;
-}
-
-static void
-posture_event(struct loop *L, int fig)
-{
-	if (!has_subscribers(L, SUB_POSTURE))
-		return;
-	const struct env_figure *f = &L->d.env.fig[fig];
-	struct jbuf *j = event_begin(L, "posture", f->name);
-	jbuf_key(j, "q", 0);
-	jbuf_vec(j, f->state->q, f->model->ndof);
-	jbuf_key(j, "com", 0);
-	jbuf_vec(j, f->state->com, 3);
-	jbuf_raw(j, "}");
-	send_event(L, SUB_POSTURE);
-}
-
-/* a posture event for every figure that changed since the last one, whoever moved it */
-static void
-posture_changes(struct loop *L)
-{
-	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
-		const struct env_figure *f = &L->d.env.fig[i];
-		if (!f->gen)
-			continue;
-		uint64_t h = state_hash(f->model, f->state);
-		if (L->told_gen[i] == f->gen && L->told_hash[i] == h)
-			continue;
-		L->told_gen[i] = f->gen;
-		L->told_hash[i] = h;
-		posture_event(L, i);
-	}
-}
-
-static void
-message_event(struct loop *L)
-{
-	if (!has_subscribers(L, SUB_MESSAGE))
-		return;
-	struct jbuf *j = event_begin(L, "message", NULL);
-	jbuf_key(j, "text", 0);
-	jbuf_str(j, L->d.message);
-	jbuf_raw(j, "}");
-	send_event(L, SUB_MESSAGE);
-}
-
-/* why a goal is (not) reached: the solver's view of one figure's frame */
-static void
-telemetry_event(struct loop *L, int fig, const struct ik_result *r, uint64_t budget, double us)
-{
-	if (!has_subscribers(L, SUB_TELEMETRY))
-		return;
-	struct env *e = &L->d.env;
-	const struct env_figure *f = &e->fig[fig];
-	const struct model *m = f->model;
-	struct jbuf *j = event_begin(L, "telemetry", f->name);
-	jbuf_key(j, "budget_us", 0);
-	jbuf_int(j, (long long)budget);
-	jbuf_key(j, "used_us", 0);
-	jbuf_num(j, us);
-	jbuf_key(j, "iterations", 0);
-	jbuf_int(j, r->iterations);
-	jbuf_key(j, "status", 0);
-	jbuf_str(j, ik_status_to_str(r->status));
-	jbuf_key(j, "time_limit_cut", 0);
-	jbuf_bool(j, r->status == IK_TIME_LIMIT);
-	jbuf_key(j, "step_factor_cut", 0);
-	jbuf_bool(j, r->stepped);
-	jbuf_key(j, "balance_rounds", 0);
-	jbuf_int(j, r->balance_rounds);
-	jbuf_key(j, "energy", 0);
-	jbuf_num(j, r->f_end);
-	jbuf_key(j, "constraints", 0);
-	jbuf_raw(j, "[");
-	int first = 1;
-	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
-		const struct env_constraint *c = &e->con[i];
-		if (!c->gen || c->fig != fig)
-			continue;
-		double pe, oe;
-		ik_constraint_error(f->ik, m, f->state, env_solver_index(e, i), &pe, &oe);
-		jbuf_raw(j, first ? "{" : ",{");
-		first = 0;
-		jbuf_key(j, "name", 1);
-		jbuf_str(j, c->name);
-		jbuf_key(j, "enabled", 0);
-		jbuf_bool(j, c->def.enabled);
-		jbuf_key(j, "pos_error", 0);
-		jbuf_num(j, pe);
-		jbuf_key(j, "ori_error", 0);
-		jbuf_num(j, oe);
-		jbuf_raw(j, "}");
-	}
-	jbuf_raw(j, "]");
-	jbuf_key(j, "active_limits", 0);
-	jbuf_raw(j, "[");
-	int nlim = ik_active_limits(f->ik, m, f->state, L->limit_dofs, IK_LIMITS_REPORTED);
-	for (int k = 0; k < nlim; k++) {
-		int d = L->limit_dofs[k];
-		jbuf_raw(j, k ? ",{" : "{");
-		jbuf_key(j, "joint", 1);
-		jbuf_str(j, m->jnt_name[m->dof_jnt[d]]);
-		jbuf_key(j, "dof", 0);
-		jbuf_int(j, d - m->jnt_dof0[m->dof_jnt[d]]);
-		jbuf_key(j, "at", 0);
-		jbuf_str(j, f->state->q[d] <= m->dof_lo[d] ? "lower" : "upper");
-		jbuf_raw(j, "}");
-	}
-	jbuf_raw(j, "]}");
-	send_event(L, SUB_TELEMETRY);
-}
-
-/* the balance of a behaving figure as it stands after its frame */
-static void
-balance_fields(struct jbuf *j, const struct behave *b)
-{
-	jbuf_key(j, "margin", 0);
-	jbuf_num(j, b->bal.margin);
-	jbuf_key(j, "threshold", 0);
-	jbuf_num(j, b->p.stability_threshold);
-	jbuf_key(j, "com", 0);
-	jbuf_vec(j, b->bal.point, 2);
-}
-
-/*
- * Stability as data: every frame the support polygon, the balance point
- * the behaviours hold, the centre of mass on the floor, its parameters and
- * the margin; and an alert when the margin crosses the figure's threshold.
- */
-static void
-stability_events(struct loop *L, int fig)
-{
-	const struct env_figure *f = &L->d.env.fig[fig];
-	const struct behave *b = f->behave;
-	if (b->stability_changed && has_subscribers(L, SUB_ALERT)) {
-		struct jbuf *j = event_begin(L, "alert", f->name);
-		jbuf_key(j, "stability", 0);
-		jbuf_str(j, b->stability_low ? "low" : "ok");
-		balance_fields(j, b);
-		jbuf_raw(j, "}");
-		send_event(L, SUB_ALERT);
-	}
-	if (!has_subscribers(L, SUB_STABILITY))
-		return;
-	struct jbuf *j = event_begin(L, "stability", f->name);
-	balance_fields(j, b);
-	jbuf_key(j, "low", 0);
-	jbuf_bool(j, b->stability_low);
-	jbuf_key(j, "balance_point", 0);
-	jbuf_vec(j, b->bal_point, 2);
-	jbuf_key(j, "x", 0);
-	jbuf_num(j, b->bal.x);
-	jbuf_key(j, "z", 0);
-	jbuf_num(j, b->bal.z);
-	jbuf_key(j, "weight_left", 0);
-	jbuf_num(j, b->bal.weight_l);
-	jbuf_key(j, "stepping", 0);
-	jbuf_bool(j, b->step.active);
-	jbuf_key(j, "polygon", 0);
-	jbuf_raw(j, "[");
-	for (int k = 0; k < b->bal.npoly; k++) {
-		if (k)
-			jbuf_raw(j, ",");
-		jbuf_vec(j, b->bal.poly[k], 2);
-	}
-	jbuf_raw(j, "]}");
-	send_event(L, SUB_STABILITY);
 }
 
 /* ---- frames ------------------------------------------------------------------ */
@@ -333,9 +97,9 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 		*changed |= state_hash(f->model, f->state) != before;
 		if (f->behave) /* objects its hands grabbed follow them */
 			*changed |= attach_after_solve(e, i);
-		telemetry_event(L, i, &r, opt.budget_us, us);
+		events_telemetry(&L->events, i, &r, opt.budget_us, us);
 		if (f->behave)
-			stability_events(L, i);
+			events_stability(&L->events, i);
 	}
 	L->d.stats.frame++;
 	return 0;
@@ -347,7 +111,7 @@ settle_frame(struct daemon *d, int *changed)
 	struct loop *L = d->loop;
 	struct ik_clock clock = { virtual_now, L };
 	int rc = frame(L, &clock, L->period_us, changed);
-	posture_changes(L);
+	events_posture_changes(&L->events);
 	return rc;
 }
 
@@ -364,162 +128,11 @@ subscribe(struct daemon *d, int client, unsigned kinds, int on)
 	return 0;
 }
 
-/* ---- pictures ---------------------------------------------------------------- */
-
-#define PNG_PERIOD_US 100000 /* frame files and frame events: at most 10 a second */
-
-static int
-scene_ready(struct loop *L, char *err, size_t errlen)
-{
-	struct scene *sc = &L->scene;
-	if (sc->r)
-		return 0;
-	if (sc->failed) {
-		snprintf(err, errlen, "the renderer could not start");
-		return -1;
-	}
-	struct render_def rd = render_default_def();
-	rd.max_w = VIEW_MAX_W;
-	rd.max_h = VIEW_MAX_H;
-	sc->r = render_make(&rd, err, errlen);
-	sc->dl = sc->r ? view_drawlist_make() : NULL;
-	if (!sc->r || !sc->dl) {
-		fprintf(stderr, "postured: no pictures: %s\n", err);
-		render_free(sc->r);
-		sc->r = NULL;
-		sc->failed = 1;
-		return -1;
-	}
-	return 0;
-}
-
-/* builds and renders view v into the renderer's buffer */
-static int
-scene_draw(struct loop *L, int v, const struct frame **dest, char *err, size_t errlen)
-{
-	struct scene *sc = &L->scene;
-	struct env *e = &L->d.env;
-	const struct env_view *vw = &e->view[v];
-	if (scene_ready(L, err, errlen) < 0)
-		return -1;
-	struct camera cam;
-	view_camera_default(&cam);
-	view_camera_aim(&cam, vw->eye, vw->target);
-	view_begin(sc->dl, &cam, vw->width, vw->height);
-	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
-		struct env_figure *f = &e->fig[i];
-		if (!f->gen)
-			continue;
-		if (sc->mesh_gen[i] != f->gen) { /* a figure new to the renderer */
-			int base = render_add_model(sc->r, f->model, err, errlen);
-			if (base < 0)
-				fprintf(stderr, "postured: figure %s drawn without its meshes: %s\n", f->name, err);
-			sc->mesh_base[i] = base < 0 ? 0 : base;
-			sc->mesh_gen[i] = f->gen;
-		}
-		view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
-		if (!vw->icons)
-			continue;
-		if (f->is_human)
-			view_add_balance(sc->dl, f->model, f->state);
-		env_sync_solver(e, i);
-		view_add_goals(sc->dl, f->ik, f->model, f->state);
-	}
-	char status[200];
-	snprintf(status, sizeof status, "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
-		 vw->name, (unsigned long long)L->d.stats.frame, L->d.stats.fps, L->d.stats.ik_us,
-		 L->d.stats.draw_us / 1000);
-	view_add_status(sc->dl, status, L->d.message, 0);
-	static struct frame frame;
-	if (render_frame(sc->r, sc->dl, L->d.stats.frame, &frame) < 0) {
-		snprintf(err, errlen, "render_frame failed");
-		return -1;
-	}
-	frame.seq = L->d.stats.frame;
-	*dest = &frame;
-	return 0;
-}
-
 static int
 render_view(struct daemon *d, int v, const struct frame **dest, char *err, size_t errlen)
 {
-	return scene_draw(d->loop, v, dest, err, errlen);
-}
-
-static void
-frame_event(struct loop *L, const char *view, const struct frame *f)
-{
-	char err[160];
-	struct scene *sc = &L->scene;
-	if (sink_png_encode(&sc->enc, f, err, sizeof err) < 0)
-		return;
-	struct jbuf *j = event_begin(L, "frame", NULL);
-	jbuf_key(j, "view", 0);
-	jbuf_str(j, view);
-	jbuf_key(j, "width", 0);
-	jbuf_int(j, f->width);
-	jbuf_key(j, "height", 0);
-	jbuf_int(j, f->height);
-	jbuf_key(j, "png", 0);
-	jbuf_base64(j, sc->enc.data, sc->enc.len);
-	jbuf_raw(j, "}");
-	send_event(L, SUB_FRAME);
-}
-
-/* the views' pictures after a frame that changed something */
-static void
-scene_publish(struct loop *L, uint64_t now)
-{
-	struct scene *sc = &L->scene;
-	struct env *e = &L->d.env;
-	int files = L->frames_dir && now - sc->last_png_us >= PNG_PERIOD_US;
-	int events = has_subscribers(L, SUB_FRAME) && now - sc->last_event_us >= PNG_PERIOD_US;
-	if (!sc->dirty || (!files && !events && !sc->fb) || sc->failed)
-		return;
-	uint64_t t0 = real_now(NULL);
-	int first = 1;
-	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
-		const struct env_view *vw = &e->view[v];
-		const struct frame *f;
-		char err[256];
-		if (!vw->used || scene_draw(L, v, &f, err, sizeof err) < 0)
-			continue;
-		if (first && sc->fb && sink_write(sc->fb, f, err, sizeof err) < 0)
-			fprintf(stderr, "postured: framebuffer: %s\n", err);
-		first = 0;
-		if (files) {
-			if (!sc->png[v] || strcmp(sc->png_name[v], vw->name)) {
-				char path[4200];
-				sink_close(sc->png[v]);
-				snprintf(path, sizeof path, "%s/%s.png", L->frames_dir, vw->name);
-				sc->png[v] = sink_png_latest(path, err, sizeof err);
-				snprintf(sc->png_name[v], sizeof sc->png_name[v], "%s", vw->name);
-			}
-			if (sc->png[v] && sink_write(sc->png[v], f, err, sizeof err) < 0)
-				fprintf(stderr, "postured: frame file: %s\n", err);
-		}
-		if (events)
-			frame_event(L, vw->name, f);
-	}
-	if (files)
-		sc->last_png_us = now;
-	if (events)
-		sc->last_event_us = now;
-	sc->dirty = 0;
-	/* drawing's share of the frame, smoothed: the solver gets the rest (§4.7.2) */
-	double us = (double)(real_now(NULL) - t0);
-	L->d.stats.draw_us = L->d.stats.draw_us ? 0.8 * L->d.stats.draw_us + 0.2 * us : us;
-}
-
-static void
-scene_free(struct scene *sc)
-{
-	for (int v = 0; v < ENV_MAX_VIEWS; v++)
-		sink_close(sc->png[v]);
-	sink_close(sc->fb);
-	sink_png_encoder_free(&sc->enc);
-	view_drawlist_free(sc->dl);
-	render_free(sc->r);
+	struct loop *L = d->loop;
+	return scene_draw(&L->scene, d, v, dest, err, errlen);
 }
 
 /* ---- requests ---------------------------------------------------------------- */
@@ -582,9 +195,9 @@ request(struct loop *L, int i, const char *line, size_t len)
 	if (out.reply) { /* the message line under the pictures */
 		snprintf(L->d.message, sizeof L->d.message, "> %.*s  %s", (int)(len > 100 ? 100 : len),
 			 line, out.ok ? "ok" : "refused");
-		message_event(L);
+		events_message(&L->events);
 	}
-	posture_changes(L);
+	events_posture_changes(&L->events);
 	if (out.reply && out.json)
 		reply(L, i, out.json);
 	free(out.json);
@@ -667,8 +280,13 @@ live_frame(struct loop *L)
 	frame(L, &clock, budget, &changed);
 	uint64_t now = real_now(NULL);
 	L->scene.dirty |= changed;
-	posture_changes(L);
-	scene_publish(L, now);
+	events_posture_changes(&L->events);
+	uint64_t t0 = real_now(NULL);
+	if (scene_publish(&L->scene, &L->d, &L->events, now)) {
+		/* drawing's share of the frame, smoothed: the solver gets the rest (§4.7.2) */
+		double us = (double)(real_now(NULL) - t0);
+		L->d.stats.draw_us = L->d.stats.draw_us ? 0.8 * L->d.stats.draw_us + 0.2 * us : us;
+	}
 	L->fps_frames++;
 	if (now - L->fps_t0 >= 1000000) {
 		L->d.stats.fps = (double)L->fps_frames * 1e6 / (double)(now - L->fps_t0);
@@ -695,13 +313,11 @@ loop_run(const struct loop_config *cfg)
 	L->d.run_frame = settle_frame;
 	L->d.subscribe = subscribe;
 	L->d.render_view = render_view;
-	L->frames_dir = cfg->frames_dir;
-	L->scene.dirty = 1;
-	sink_png_encoder_init(&L->scene.enc);
+	scene_init(&L->scene, cfg->frames_dir);
 	L->period_us = (uint64_t)(1e6 / cfg->fps);
 	L->srv.unix_fd = L->srv.tcp_fd = -1;
 	int status = 1;
-	if (jbuf_init(&L->ev, 1u << 20) < 0)
+	if (events_init(&L->events, &L->srv, &L->d) < 0)
 		goto out;
 	if (cfg->fb_device && !(L->scene.fb = sink_fb_open(cfg->fb_device, err, sizeof err))) {
 		fprintf(stderr, "postured: framebuffer %s: %s\n", cfg->fb_device, err);
@@ -763,9 +379,7 @@ loop_run(const struct loop_config *cfg)
 		if (L->j.seq != L->synced_seq) {
 			if (journal_sync(&L->j) < 0)
 				fprintf(stderr, "postured: journal sync: %s\n", strerror(errno));
-			if (cfg->init_file && env_count(&L->d.env) == 0 && L->j.seq == 0 && run_init(L, cfg->init_file) < 0)
-		goto out;
-	L->synced_seq = L->j.seq;
+			L->synced_seq = L->j.seq;
 			if (journal_snapshot(&L->j, &L->d, 0) < 0)
 				fprintf(stderr, "postured: snapshot: %s\n", strerror(errno));
 		}
@@ -788,7 +402,7 @@ out:
 	env_clear(&L->d.env);
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
-	jbuf_free(&L->ev);
+	events_free(&L->events);
 	scene_free(&L->scene);
 	free(L);
 	return status;

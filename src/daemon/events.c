@@ -1,0 +1,223 @@
+/* events.c - the events clients subscribe to, written without allocating (see events.h) */
+#include "daemon/events.h"
+
+#include <stdio.h>
+
+int
+events_init(struct events *E, struct server *srv, const struct daemon *d)
+{
+	E->srv = srv;
+	E->d = d;
+	return jbuf_init(&E->buf, EVENTS_BUF);
+}
+
+void
+events_free(struct events *E)
+{
+	jbuf_free(&E->buf);
+}
+
+int
+events_wanted(const struct events *E, unsigned kind)
+{
+	for (int i = 0; i < SERVER_MAX_CLIENTS; i++)
+		if (E->srv->c[i].fd >= 0 && (E->srv->c[i].subs & kind) && !E->srv->c[i].closing)
+			return 1;
+	return 0;
+}
+
+void
+events_send(struct events *E, unsigned kind)
+{
+	if (E->buf.overflow) {
+		fprintf(stderr, "postured: an event did not fit its buffer; not sent\n");
+		return;
+	}
+	jbuf_raw(&E->buf, "\n");
+	for (int i = 0; i < SERVER_MAX_CLIENTS; i++) {
+		struct client *c = &E->srv->c[i];
+		if (c->fd < 0 || !(c->subs & kind) || c->closing)
+			continue;
+		if (server_queue(E->srv, i, E->buf.buf, E->buf.len) < 0) {
+			fprintf(stderr, "postured: client %d does not read its events: dropped\n", i);
+			server_drop(E->srv, i);
+		}
+	}
+}
+
+struct jbuf *
+events_begin(struct events *E, const char *kind, const char *figure)
+{
+	struct jbuf *j = &E->buf;
+	jbuf_reset(j);
+	jbuf_raw(j, "{\"event\":");
+	jbuf_str(j, kind);
+	jbuf_key(j, "frame", 0);
+	jbuf_int(j, (long long)E->d->stats.frame);
+	if (figure) {
+		jbuf_key(j, "figure", 0);
+		jbuf_str(j, figure);
+	}
+	return j;
+}
+
+static void
+posture_event(struct events *E, int fig)
+{
+	if (!events_wanted(E, SUB_POSTURE))
+		return;
+	const struct env_figure *f = &E->d->env.fig[fig];
+	struct jbuf *j = events_begin(E, "posture", f->name);
+	jbuf_key(j, "q", 0);
+	jbuf_vec(j, f->state->q, f->model->ndof);
+	jbuf_key(j, "com", 0);
+	jbuf_vec(j, f->state->com, 3);
+	jbuf_raw(j, "}");
+	events_send(E, SUB_POSTURE);
+}
+
+void
+events_posture_changes(struct events *E)
+{
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		const struct env_figure *f = &E->d->env.fig[i];
+		if (!f->gen)
+			continue;
+		uint64_t h = state_hash(f->model, f->state);
+		if (E->told_gen[i] == f->gen && E->told_hash[i] == h)
+			continue;
+		E->told_gen[i] = f->gen;
+		E->told_hash[i] = h;
+		posture_event(E, i);
+	}
+}
+
+void
+events_message(struct events *E)
+{
+	if (!events_wanted(E, SUB_MESSAGE))
+		return;
+	struct jbuf *j = events_begin(E, "message", NULL);
+	jbuf_key(j, "text", 0);
+	jbuf_str(j, E->d->message);
+	jbuf_raw(j, "}");
+	events_send(E, SUB_MESSAGE);
+}
+
+void
+events_telemetry(struct events *E, int fig, const struct ik_result *r, uint64_t budget,
+		 double us)
+{
+	if (!events_wanted(E, SUB_TELEMETRY))
+		return;
+	const struct env *e = &E->d->env;
+	const struct env_figure *f = &e->fig[fig];
+	const struct model *m = f->model;
+	struct jbuf *j = events_begin(E, "telemetry", f->name);
+	jbuf_key(j, "budget_us", 0);
+	jbuf_int(j, (long long)budget);
+	jbuf_key(j, "used_us", 0);
+	jbuf_num(j, us);
+	jbuf_key(j, "iterations", 0);
+	jbuf_int(j, r->iterations);
+	jbuf_key(j, "status", 0);
+	jbuf_str(j, ik_status_to_str(r->status));
+	jbuf_key(j, "time_limit_cut", 0);
+	jbuf_bool(j, r->status == IK_TIME_LIMIT);
+	jbuf_key(j, "step_factor_cut", 0);
+	jbuf_bool(j, r->stepped);
+	jbuf_key(j, "balance_rounds", 0);
+	jbuf_int(j, r->balance_rounds);
+	jbuf_key(j, "energy", 0);
+	jbuf_num(j, r->f_end);
+	jbuf_key(j, "constraints", 0);
+	jbuf_raw(j, "[");
+	int first = 1;
+	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
+		const struct env_constraint *c = &e->con[i];
+		if (!c->gen || c->fig != fig)
+			continue;
+		double pe, oe;
+		ik_constraint_error(f->ik, m, f->state, env_solver_index(e, i), &pe, &oe);
+		jbuf_raw(j, first ? "{" : ",{");
+		first = 0;
+		jbuf_key(j, "name", 1);
+		jbuf_str(j, c->name);
+		jbuf_key(j, "enabled", 0);
+		jbuf_bool(j, c->def.enabled);
+		jbuf_key(j, "pos_error", 0);
+		jbuf_num(j, pe);
+		jbuf_key(j, "ori_error", 0);
+		jbuf_num(j, oe);
+		jbuf_raw(j, "}");
+	}
+	jbuf_raw(j, "]");
+	jbuf_key(j, "active_limits", 0);
+	jbuf_raw(j, "[");
+	int nlim = ik_active_limits(f->ik, m, f->state, E->limit_dofs, EVENTS_LIMITS_REPORTED);
+	for (int k = 0; k < nlim; k++) {
+		int d = E->limit_dofs[k];
+		jbuf_raw(j, k ? ",{" : "{");
+		jbuf_key(j, "joint", 1);
+		jbuf_str(j, m->jnt_name[m->dof_jnt[d]]);
+		jbuf_key(j, "dof", 0);
+		jbuf_int(j, d - m->jnt_dof0[m->dof_jnt[d]]);
+		jbuf_key(j, "at", 0);
+		jbuf_str(j, f->state->q[d] <= m->dof_lo[d] ? "lower" : "upper");
+		jbuf_raw(j, "}");
+	}
+	jbuf_raw(j, "]}");
+	events_send(E, SUB_TELEMETRY);
+}
+
+/* the balance of a behaving figure as it stands after its frame */
+static void
+balance_fields(struct jbuf *j, const struct behave *b)
+{
+	jbuf_key(j, "margin", 0);
+	jbuf_num(j, b->bal.margin);
+	jbuf_key(j, "threshold", 0);
+	jbuf_num(j, b->p.stability_threshold);
+	jbuf_key(j, "com", 0);
+	jbuf_vec(j, b->bal.point, 2);
+}
+
+void
+events_stability(struct events *E, int fig)
+{
+	const struct env_figure *f = &E->d->env.fig[fig];
+	const struct behave *b = f->behave;
+	if (b->stability_changed && events_wanted(E, SUB_ALERT)) {
+		struct jbuf *j = events_begin(E, "alert", f->name);
+		jbuf_key(j, "stability", 0);
+		jbuf_str(j, b->stability_low ? "low" : "ok");
+		balance_fields(j, b);
+		jbuf_raw(j, "}");
+		events_send(E, SUB_ALERT);
+	}
+	if (!events_wanted(E, SUB_STABILITY))
+		return;
+	struct jbuf *j = events_begin(E, "stability", f->name);
+	balance_fields(j, b);
+	jbuf_key(j, "low", 0);
+	jbuf_bool(j, b->stability_low);
+	jbuf_key(j, "balance_point", 0);
+	jbuf_vec(j, b->bal_point, 2);
+	jbuf_key(j, "x", 0);
+	jbuf_num(j, b->bal.x);
+	jbuf_key(j, "z", 0);
+	jbuf_num(j, b->bal.z);
+	jbuf_key(j, "weight_left", 0);
+	jbuf_num(j, b->bal.weight_l);
+	jbuf_key(j, "stepping", 0);
+	jbuf_bool(j, b->step.active);
+	jbuf_key(j, "polygon", 0);
+	jbuf_raw(j, "[");
+	for (int k = 0; k < b->bal.npoly; k++) {
+		if (k)
+			jbuf_raw(j, ",");
+		jbuf_vec(j, b->bal.poly[k], 2);
+	}
+	jbuf_raw(j, "]}");
+	events_send(E, SUB_STABILITY);
+}

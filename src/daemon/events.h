@@ -1,0 +1,59 @@
+/*
+ * events.h - the events clients subscribe to (PROTOCOL.md, Events):
+ * postures that changed, the message line, the solver's telemetry of a
+ * figure's frame, stability and its alerts, and the pictures' frames. Each
+ * is one JSON line written into a buffer made once, so a frame's events
+ * allocate nothing, and queued to every client subscribed to its kind.
+ */
+#ifndef POSTURE_EVENTS_H
+#define POSTURE_EVENTS_H
+
+#include <stdint.h>
+
+#include "daemon/daemon.h"
+#include "daemon/jbuf.h"
+#include "daemon/server.h"
+#include "pose/ik.h"
+
+#define EVENTS_BUF (1u << 20)       /* the largest event: a frame's PNG in base64 */
+#define EVENTS_LIMITS_REPORTED 256 /* dofs listed as resting on a limit */
+
+struct events {
+	struct server *srv;     /* the clients and their subscriptions */
+	const struct daemon *d; /* what the events tell of */
+	struct jbuf buf;        /* the event being written */
+	uint64_t told_hash[ENV_MAX_FIGURES]; /* postures as the last posture events told them */
+	uint32_t told_gen[ENV_MAX_FIGURES];
+	int limit_dofs[EVENTS_LIMITS_REPORTED];
+};
+
+/* 0, or -1 when out of memory (events_free cleans up either way) */
+int events_init(struct events *E, struct server *srv, const struct daemon *d);
+void events_free(struct events *E);
+
+/* 1 when some client that is not closing subscribes to kind (enum sub_kind) */
+int events_wanted(const struct events *E, unsigned kind);
+/* starts an event in E->buf: {"event":kind,"frame":N[,"figure":figure] */
+struct jbuf *events_begin(struct events *E, const char *kind, const char *figure);
+/*
+ * Ends the line in E->buf and queues it to every subscriber of kind; a
+ * client whose queue is full is dropped, an event that overflowed the
+ * buffer is not sent.
+ */
+void events_send(struct events *E, unsigned kind);
+
+/* a posture event for every figure that changed since the last one, whoever moved it */
+void events_posture_changes(struct events *E);
+/* the message line under the pictures */
+void events_message(struct events *E);
+/* why a goal is (not) reached: the solver's view of one figure's frame */
+void events_telemetry(struct events *E, int fig, const struct ik_result *r, uint64_t budget,
+		      double us);
+/*
+ * Stability as data: every frame the support polygon, the balance point
+ * the behaviours hold, the centre of mass on the floor, its parameters and
+ * the margin; and an alert when the margin crosses the figure's threshold.
+ */
+void events_stability(struct events *E, int fig);
+
+#endif

@@ -1,0 +1,157 @@
+/* scene.c - the views' pictures: drawn, written to files and the framebuffer, sent as events */
+#include "daemon/scene.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "draw/sink.h"
+
+void
+scene_init(struct scene *sc, const char *frames_dir)
+{
+	memset(sc, 0, sizeof *sc);
+	sc->frames_dir = frames_dir;
+	sc->dirty = 1;
+	sink_png_encoder_init(&sc->enc);
+}
+
+/* the renderer and draw list, made when first needed; 0, or -1 with err */
+static int
+scene_ready(struct scene *sc, char *err, size_t errlen)
+{
+	if (sc->r)
+		return 0;
+	if (sc->failed) {
+		snprintf(err, errlen, "the renderer could not start");
+		return -1;
+	}
+	struct render_def rd = render_default_def();
+	rd.max_w = VIEW_MAX_W;
+	rd.max_h = VIEW_MAX_H;
+	sc->r = render_make(&rd, err, errlen);
+	sc->dl = sc->r ? view_drawlist_make() : NULL;
+	if (!sc->r || !sc->dl) {
+		fprintf(stderr, "postured: no pictures: %s\n", err);
+		render_free(sc->r);
+		sc->r = NULL;
+		sc->failed = 1;
+		return -1;
+	}
+	return 0;
+}
+
+int
+scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
+	   size_t errlen)
+{
+	struct env *e = &d->env;
+	const struct env_view *vw = &e->view[v];
+	if (scene_ready(sc, err, errlen) < 0)
+		return -1;
+	struct camera cam;
+	view_camera_default(&cam);
+	view_camera_aim(&cam, vw->eye, vw->target);
+	view_begin(sc->dl, &cam, vw->width, vw->height);
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		struct env_figure *f = &e->fig[i];
+		if (!f->gen)
+			continue;
+		if (sc->mesh_gen[i] != f->gen) { /* a figure new to the renderer */
+			int base = render_add_model(sc->r, f->model, err, errlen);
+			if (base < 0)
+				fprintf(stderr, "postured: figure %s drawn without its meshes: %s\n", f->name, err);
+			sc->mesh_base[i] = base < 0 ? 0 : base;
+			sc->mesh_gen[i] = f->gen;
+		}
+		view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
+		if (!vw->icons)
+			continue;
+		if (f->is_human)
+			view_add_balance(sc->dl, f->model, f->state);
+		env_sync_solver(e, i);
+		view_add_goals(sc->dl, f->ik, f->model, f->state);
+	}
+	char status[200];
+	snprintf(status, sizeof status, "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
+		 vw->name, (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
+		 d->stats.draw_us / 1000);
+	view_add_status(sc->dl, status, d->message, 0);
+	if (render_frame(sc->r, sc->dl, d->stats.frame, &sc->frame) < 0) {
+		snprintf(err, errlen, "render_frame failed");
+		return -1;
+	}
+	sc->frame.seq = d->stats.frame;
+	*dest = &sc->frame;
+	return 0;
+}
+
+/* the picture of a view as a frame event: PNG in base64 */
+static void
+frame_event(struct scene *sc, struct events *E, const char *view, const struct frame *f)
+{
+	char err[160];
+	if (sink_png_encode(&sc->enc, f, err, sizeof err) < 0)
+		return;
+	struct jbuf *j = events_begin(E, "frame", NULL);
+	jbuf_key(j, "view", 0);
+	jbuf_str(j, view);
+	jbuf_key(j, "width", 0);
+	jbuf_int(j, f->width);
+	jbuf_key(j, "height", 0);
+	jbuf_int(j, f->height);
+	jbuf_key(j, "png", 0);
+	jbuf_base64(j, sc->enc.data, sc->enc.len);
+	jbuf_raw(j, "}");
+	events_send(E, SUB_FRAME);
+}
+
+int
+scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now)
+{
+	struct env *e = &d->env;
+	int files = sc->frames_dir && now - sc->last_png_us >= SCENE_PERIOD_US;
+	int events = events_wanted(E, SUB_FRAME) && now - sc->last_event_us >= SCENE_PERIOD_US;
+	if (!sc->dirty || (!files && !events && !sc->fb) || sc->failed)
+		return 0;
+	int first = 1;
+	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
+		const struct env_view *vw = &e->view[v];
+		const struct frame *f;
+		char err[256];
+		if (!vw->used || scene_draw(sc, d, v, &f, err, sizeof err) < 0)
+			continue;
+		if (first && sc->fb && sink_write(sc->fb, f, err, sizeof err) < 0)
+			fprintf(stderr, "postured: framebuffer: %s\n", err);
+		first = 0;
+		if (files) {
+			if (!sc->png[v] || strcmp(sc->png_name[v], vw->name)) {
+				char path[4200];
+				sink_close(sc->png[v]);
+				snprintf(path, sizeof path, "%s/%s.png", sc->frames_dir, vw->name);
+				sc->png[v] = sink_png_latest(path, err, sizeof err);
+				snprintf(sc->png_name[v], sizeof sc->png_name[v], "%s", vw->name);
+			}
+			if (sc->png[v] && sink_write(sc->png[v], f, err, sizeof err) < 0)
+				fprintf(stderr, "postured: frame file: %s\n", err);
+		}
+		if (events)
+			frame_event(sc, E, vw->name, f);
+	}
+	if (files)
+		sc->last_png_us = now;
+	if (events)
+		sc->last_event_us = now;
+	sc->dirty = 0;
+	return 1;
+}
+
+void
+scene_free(struct scene *sc)
+{
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		sink_close(sc->png[v]);
+	sink_close(sc->fb);
+	sink_png_encoder_free(&sc->enc);
+	view_drawlist_free(sc->dl);
+	render_free(sc->r);
+}
