@@ -39,7 +39,8 @@ to_byte(float v)
 	return (uint8_t)(v <= 0 ? 0 : v >= 1 ? 255 : v * 255 + 0.5f);
 }
 
-/* one instance's vertices, in the world, and its indices; 0, or -1 when it does not fit */
+/* one instance's vertices, in the world, and its indices; 0, 1 when it has no inverse
+ * (nothing to draw), or -1 when it does not fit */
 static int
 pack_instance(struct pack *p, const struct view_instance *in, const struct tess_mesh *m, int *nv,
 	      int *ni)
@@ -53,7 +54,7 @@ pack_instance(struct pack *p, const struct view_instance *in, const struct tess_
 		for (int i = 0; i < 3; i++)
 			a[j][i] = t[4 * j + i];
 	if (fabsf(glm_mat3_det(a)) < 1e-30f)
-		return 0;
+		return 1;
 	glm_mat3_inv(a, inv);
 	uint8_t c[4] = { to_byte(in->rgba[0]), to_byte(in->rgba[1]), to_byte(in->rgba[2]),
 			 to_byte(in->rgba[3]) };
@@ -114,9 +115,10 @@ pack_drawlist(struct pack *p, const struct drawlist *dl, const float view[16],
 					     : pack_class(in) != (enum pack_class)c)
 				continue;
 			int m = c == PACK_SHADOW ? lod[in->mesh] : in->mesh;
-			if (pack_instance(p, in, &mesh[m], &nv, &ni))
+			int rc = pack_instance(p, in, &mesh[m], &nv, &ni);
+			if (rc < 0)
 				break;
-			if (c != PACK_SHADOW) {
+			if (rc == 0 && c != PACK_SHADOW) {
 				p->instances++;
 				p->triangles += mesh[m].nidx / 3;
 			}
