@@ -16,10 +16,13 @@ TESTLIBS := -lcmocka -lnlopt
 BENCHLIBS := -lnlopt
 SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 
+# where everything is built; another folder lets two builds of one tree run side by side
+BUILD   ?= build
 VENV    := .venv
 PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
-DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip
+DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
+	clang evemu-tools libevemu-dev
 
 # the layers, bottom up; each folder includes only from those before it (make layer-check)
 LAYERS    := figure pose draw interact daemon
@@ -33,13 +36,13 @@ BENCH_SRC := $(wildcard tools/bench/*.c)
 define variant
 $(1)_CFLAGS := $(BASE) $(WARN) $(2)
 $(1)_LDFLAGS := $(3)
-$(1)_OBJ := $$(patsubst %.c,build/$(1)/%.o,$$(LIB_SRC))
-$(1)_LIB := build/$(1)/libposture.a
-$(1)_TOOLS := $$(patsubst tools/%.c,build/$(1)/bin/%,$$(TOOL_SRC)) build/$(1)/bin/postured
-$(1)_TESTS := $$(patsubst tests/%.c,build/$(1)/tests/%,$$(TEST_SRC))
-$(1)_BENCH := $$(patsubst tools/bench/%.c,build/$(1)/bench/%,$$(BENCH_SRC))
+$(1)_OBJ := $$(patsubst %.c,$(BUILD)/$(1)/%.o,$$(LIB_SRC))
+$(1)_LIB := $(BUILD)/$(1)/libposture.a
+$(1)_TOOLS := $$(patsubst tools/%.c,$(BUILD)/$(1)/bin/%,$$(TOOL_SRC)) $(BUILD)/$(1)/bin/postured
+$(1)_TESTS := $$(patsubst tests/%.c,$(BUILD)/$(1)/tests/%,$$(TEST_SRC))
+$(1)_BENCH := $$(patsubst tools/bench/%.c,$(BUILD)/$(1)/bench/%,$$(BENCH_SRC))
 
-build/$(1)/%.o: %.c | build/.deps-apt
+$(BUILD)/$(1)/%.o: %.c | $(BUILD)/.deps-apt
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) -c $$< -o $$@
 
@@ -47,23 +50,23 @@ $$($(1)_LIB): $$($(1)_OBJ)
 	@mkdir -p $$(dir $$@)
 	rm -f $$@ && ar rcs $$@ $$^
 
-build/$(1)/bin/%: build/$(1)/tools/%.o $$($(1)_LIB)
+$(BUILD)/$(1)/bin/%: $(BUILD)/$(1)/tools/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
 
-build/$(1)/bin/postured: build/$(1)/src/daemon/main.o $$($(1)_LIB)
+$(BUILD)/$(1)/bin/postured: $(BUILD)/$(1)/src/daemon/main.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
 
-build/$(1)/tests/%: build/$(1)/tests/%.o $$($(1)_LIB)
+$(BUILD)/$(1)/tests/%: $(BUILD)/$(1)/tests/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(TESTLIBS) $(LIBS) -o $$@
 
-build/$(1)/bench/%: build/$(1)/tools/bench/%.o $$($(1)_LIB)
+$(BUILD)/$(1)/bench/%: $(BUILD)/$(1)/tools/bench/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(BENCHLIBS) $(LIBS) -o $$@
 
--include $$(patsubst %.c,build/$(1)/%.d,$$(LIB_SRC) $(MAIN_SRC) $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC))
+-include $$(patsubst %.c,$(BUILD)/$(1)/%.d,$$(LIB_SRC) $(MAIN_SRC) $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC))
 endef
 
 $(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,))
@@ -77,10 +80,10 @@ all: $(rel_LIB) $(rel_TOOLS) $(rel_TESTS) $(rel_BENCH)
 # ---- dependencies --------------------------------------------------------
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-deps: build/.deps-apt $(VENV)/.installed
+deps: $(BUILD)/.deps-apt $(VENV)/.installed
 
-build/.deps-apt:
-	@mkdir -p build
+$(BUILD)/.deps-apt: Makefile
+	@mkdir -p $(BUILD)
 	@missing=$$(for p in $(DEB_PKGS); do \
 		dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; \
 	done); \
@@ -91,16 +94,16 @@ build/.deps-apt:
 	fi
 	@touch $@
 
-$(VENV)/.installed: tests/requirements.txt | build/.deps-apt
+$(VENV)/.installed: tests/requirements.txt | $(BUILD)/.deps-apt
 	@[ -x $(PY) ] || python3 -m venv $(VENV)
 	$(PY) -m pip install -q --disable-pip-version-check -r tests/requirements.txt
 	@touch $@
 
 # ---- the main job --------------------------------------------------------
-run: deps build/rel/bin/postured build/rel/bin/posture-figure
-	@mkdir -p build/run
-	build/rel/bin/postured --socket build/run/postured.sock --state-dir build/run/state \
-		--frames build/run/frames --init tools/kiosk.init --library src/figure/library
+run: deps $(BUILD)/rel/bin/postured $(BUILD)/rel/bin/posture-figure
+	@mkdir -p $(BUILD)/run
+	$(BUILD)/rel/bin/postured --socket $(BUILD)/run/postured.sock --state-dir $(BUILD)/run/state \
+		--frames $(BUILD)/run/frames --init tools/kiosk.init --library src/figure/library
 
 # ---- tests ---------------------------------------------------------------
 test: deps layer-check unit-test system-test
@@ -116,7 +119,7 @@ unit-test: $(rel_TESTS) $(san_TESTS) $(rel_TOOLS)
 	done
 
 system-test: $(rel_TOOLS) | deps
-	POSTURE_BUILD=build/rel $(PY) -m pytest -q tests/system tests/tools
+	POSTURE_BUILD=$(BUILD)/rel $(PY) -m pytest -q tests/system tests/tools
 
 check: layer-check unit-test
 
@@ -126,9 +129,9 @@ PEER_CXXFLAGS := -O2 -std=c++17 -DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION \
 	-DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
 	-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -I/usr/include/eigen3
 
-PEER_BENCH := $(patsubst tools/bench/%.cpp,build/rel/bench/%,$(wildcard tools/bench/*.cpp))
+PEER_BENCH := $(patsubst tools/bench/%.cpp,$(BUILD)/rel/bench/%,$(wildcard tools/bench/*.cpp))
 
-$(PEER_BENCH): build/rel/bench/%: tools/bench/%.cpp | deps
+$(PEER_BENCH): $(BUILD)/rel/bench/%: tools/bench/%.cpp | deps
 	@mkdir -p $(dir $@)
 	P=$$(echo $(CURDIR)/$(VENV)/lib/python3*/site-packages/cmeel.prefix); \
 	$(CXX) $(PEER_CXXFLAGS) -I$$P/include -I$$P/include/pinocchio/deprecated $< \
@@ -136,12 +139,12 @@ $(PEER_BENCH): build/rel/bench/%: tools/bench/%.cpp | deps
 
 # C benchmarks that need no peer run on their own; the others are run by the
 # Python orchestrators (tools/bench/*.py), which measure ours and the peers
-BENCH_STANDALONE := build/rel/bench/ik_body build/rel/bench/behave_bench
+BENCH_STANDALONE := $(BUILD)/rel/bench/ik_body $(BUILD)/rel/bench/behave_bench
 
 bench: deps $(rel_BENCH) $(rel_TOOLS) $(PEER_BENCH)
 	@set -e; for b in $(BENCH_STANDALONE); do echo "== $$b"; $$b; done
 	@set -e; for b in $(wildcard tools/bench/*.py); do \
-		echo "== $$b"; POSTURE_BUILD=build/rel $(PY) $$b; done
+		echo "== $$b"; POSTURE_BUILD=$(BUILD)/rel $(PY) $$b; done
 
 clean:
-	rm -rf build
+	rm -rf $(BUILD)
