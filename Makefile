@@ -5,11 +5,12 @@
 #   make bench   benchmarks; each prints "BENCH <name> key=value ..." lines
 #   make deps    installs what is missing (Debian packages, Python venv)
 
+SHELL   := /bin/bash
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -MMD -MP
-LIBS    := -ljansson -lOSMesa -lfreetype -lpng -lm
+BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -MMD -MP
+LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -lm
 TESTLIBS := -lcmocka -lnlopt
 # NLopt is the independent minimiser the IK tests and benchmarks compare against;
 # only tests and benchmarks link it
@@ -22,7 +23,7 @@ VENV    := .venv
 PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
-	clang evemu-tools libevemu-dev
+	libevdev-dev clang evemu-tools libevemu-dev
 
 # the layers, bottom up; each folder includes only from those before it (make layer-check)
 LAYERS    := figure pose draw interact daemon
@@ -72,7 +73,7 @@ endef
 $(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,))
 $(eval $(call variant,san,-O1 -g $(SAN),$(SAN)))
 
-.PHONY: all run test layer-check unit-test system-test bench deps check clean
+.PHONY: all run test layer-check unit-test system-test fuzz fuzz-smoke bench deps check clean
 .SECONDARY:
 
 all: $(rel_LIB) $(rel_TOOLS) $(rel_TESTS) $(rel_BENCH)
@@ -106,7 +107,7 @@ run: deps $(BUILD)/rel/bin/postured $(BUILD)/rel/bin/posture-figure
 		--frames $(BUILD)/run/frames --init tools/kiosk.init --library src/figure/library
 
 # ---- tests ---------------------------------------------------------------
-test: deps layer-check unit-test system-test
+test: deps layer-check unit-test system-test fuzz-smoke
 
 # every include points down the layers, and no two modules need each other
 layer-check:
@@ -122,6 +123,47 @@ system-test: $(rel_TOOLS) | deps
 	POSTURE_BUILD=$(BUILD)/rel $(PY) -m pytest -q tests/system tests/tools
 
 check: layer-check unit-test
+
+# ---- fuzzing (libFuzzer from Debian's clang) ---------------------------------
+# every parser of outside bytes has a harness tests/fuzz/fuzz_NAME.c with seeds in
+# tests/fuzz/corpus/NAME; `make test` runs each briefly on its seeds, `make fuzz` long
+FUZZ_SRC  := $(wildcard tests/fuzz/fuzz_*.c)
+FUZZ_CC   := clang
+FUZZ_SAN  := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_OBJ  := $(patsubst %.c,$(BUILD)/fuzz/%.o,$(LIB_SRC))
+FUZZ_LIB  := $(BUILD)/fuzz/libposture.a
+FUZZ_BIN  := $(patsubst tests/fuzz/%.c,$(BUILD)/fuzz/bin/%,$(FUZZ_SRC))
+FUZZ_RUNS ?= 10000000
+FUZZ_SMOKE_RUNS ?= 20000
+
+$(BUILD)/fuzz/%.o: %.c | $(BUILD)/.deps-apt
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(BASE) $(WARN) -g -O1 -fsanitize=fuzzer-no-link $(FUZZ_SAN) -c $< -o $@
+
+$(FUZZ_LIB): $(FUZZ_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/fuzz/bin/%: tests/fuzz/%.c $(FUZZ_LIB)
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(BASE) $(WARN) -g -O1 -fsanitize=fuzzer $(FUZZ_SAN) $< $(FUZZ_LIB) $(LIBS) -o $@
+
+# runs every harness $(1) times over its seeds and a working corpus; a crash prints the
+# end of its log and stops
+define fuzz_run
+	@set -e; for f in $(FUZZ_BIN); do n=$${f##*/fuzz_}; w=$(BUILD)/fuzz/work/$$n; \
+		mkdir -p $$w; \
+		if ! $$f -runs=$(1) -max_len=65536 -print_final_stats=1 $$w tests/fuzz/corpus/$$n \
+			> $$w.log 2>&1; then tail -40 $$w.log; echo "fuzz: $$n failed (log $$w.log)"; \
+			exit 1; fi; \
+		echo "fuzz: $$n $$(grep -o 'number_of_executed_units: *[0-9]*' $$w.log | grep -o '[0-9]*$$') executions, no crash"; \
+	done
+endef
+
+fuzz: $(FUZZ_BIN)
+	$(call fuzz_run,$(FUZZ_RUNS))
+
+fuzz-smoke: $(FUZZ_BIN)
+	$(call fuzz_run,$(FUZZ_SMOKE_RUNS))
 
 # ---- benchmarks ----------------------------------------------------------
 # peers in C++ against the libraries the pip wheels ship (Pinocchio, Boost)
