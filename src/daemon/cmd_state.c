@@ -213,13 +213,15 @@ sub_kinds(struct cmd_ctx *c, unsigned *kinds)
 		unsigned kind;
 	} names[] = { { "posture", SUB_POSTURE }, { "telemetry", SUB_TELEMETRY },
 		      { "message", SUB_MESSAGE }, { "frame", SUB_FRAME },
-		      { "stability", SUB_STABILITY }, { "alert", SUB_ALERT } };
+		      { "stability", SUB_STABILITY }, { "alert", SUB_ALERT },
+		      { "input", SUB_INPUT } };
 	for (size_t i = 0; i < sizeof names / sizeof *names; i++)
 		if (!strcmp(c->argv[0], names[i].name)) {
 			*kinds = names[i].kind;
 			return 0;
 		}
-	return cmd_fail(c, "bad-argument", "events are posture, telemetry, message, frame, stability or alert");
+	return cmd_fail(c, "bad-argument",
+			"events are posture, telemetry, message, frame, stability, alert or input");
 }
 
 static int

@@ -8,8 +8,10 @@
 
 #include <stdint.h>
 
-#include "pose/env.h"
+#include "devices/can_map.h"
+#include "devices/queue.h"
 #include "draw/frame.h"
+#include "pose/env.h"
 
 #define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
 #define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
@@ -41,6 +43,7 @@ enum sub_kind {
 	SUB_FRAME = 1 << 3,
 	SUB_STABILITY = 1 << 4, /* every frame: support polygon, balance point, margin */
 	SUB_ALERT = 1 << 5,     /* the stability margin crossing its threshold */
+	SUB_INPUT = 1 << 6,     /* every input event, decoded, as the loop takes it */
 };
 
 struct daemon {
@@ -57,6 +60,11 @@ struct daemon {
 	int (*render_view)(struct daemon *d, int v, const struct frame **dest, char *err,
 			   size_t errlen);
 	char message[256]; /* the message line under the pictures (§1.7) */
+	/* the queue from the devices and the socket's input lines to the loop; NULL: none */
+	struct input_queue *input;
+	uint64_t (*now_us)(void); /* the loop's clock for injected events; NULL: 0 */
+	/* the dial panel's map: its valuators' names; NULL: no panel */
+	const struct can_map *panel;
 };
 
 /* frees the undo and redo texts */

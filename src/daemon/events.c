@@ -1,6 +1,8 @@
 /* events.c - the events clients subscribe to, written without allocating (see events.h) */
 #include "daemon/events.h"
 
+#include <libevdev/libevdev.h>
+#include <linux/input-event-codes.h>
 #include <stdio.h>
 
 int
@@ -220,4 +222,85 @@ events_stability(struct events *E, int fig)
 	}
 	jbuf_raw(j, "]}");
 	events_send(E, SUB_STABILITY);
+}
+
+/* a key or button code, and its name in the kernel's headers when it has one */
+static void
+code_name(struct jbuf *j, uint16_t code)
+{
+	jbuf_key(j, "code", 0);
+	jbuf_int(j, code);
+	const char *name = libevdev_event_code_get_name(EV_KEY, code);
+	if (name) {
+		jbuf_key(j, "name", 0);
+		jbuf_str(j, name);
+	}
+}
+
+void
+events_input(struct events *E, const struct input_event_rec *e)
+{
+	if (!events_wanted(E, SUB_INPUT))
+		return;
+	struct jbuf *j = events_begin(E, "input", NULL);
+	jbuf_key(j, "kind", 0);
+	jbuf_str(j, input_kind_to_str((enum input_kind)e->kind));
+	jbuf_key(j, "device", 0);
+	if (e->device == INPUT_DEVICE_SOCKET)
+		jbuf_str(j, "socket");
+	else
+		jbuf_int(j, e->device);
+	jbuf_key(j, "t_us", 0);
+	jbuf_int(j, (long long)e->t_us);
+	switch ((enum input_kind)e->kind) {
+	case INPUT_MOTION:
+		jbuf_key(j, "dx", 0);
+		jbuf_num(j, e->x);
+		jbuf_key(j, "dy", 0);
+		jbuf_num(j, e->y);
+		break;
+	case INPUT_POINTER:
+		if (e->flags & INPUT_F_VIEW) {
+			jbuf_key(j, "view", 0);
+			const struct env *env = &E->d->env;
+			jbuf_str(j, e->code < ENV_MAX_VIEWS ? env->view[e->code].name : "");
+		}
+		jbuf_key(j, "x", 0);
+		jbuf_num(j, e->x);
+		jbuf_key(j, "y", 0);
+		jbuf_num(j, e->y);
+		break;
+	case INPUT_BUTTON:
+	case INPUT_KEY:
+		code_name(j, e->code);
+		jbuf_key(j, "value", 0);
+		jbuf_int(j, e->value);
+		break;
+	case INPUT_WHEEL:
+		jbuf_key(j, "axis", 0);
+		jbuf_str(j, e->code == INPUT_WHEEL_H ? "horizontal" : "vertical");
+		jbuf_key(j, "detents", 0);
+		jbuf_int(j, e->value);
+		jbuf_key(j, "hires", 0);
+		jbuf_num(j, e->x);
+		break;
+	case INPUT_VALUATOR:
+		jbuf_key(j, "valuator", 0);
+		jbuf_int(j, e->code);
+		if (E->d->panel && e->code < E->d->panel->n) {
+			jbuf_key(j, "name", 0);
+			jbuf_str(j, E->d->panel->line[e->code].name);
+		}
+		jbuf_key(j, "value", 0);
+		jbuf_num(j, e->x);
+		jbuf_key(j, "stale", 0);
+		jbuf_bool(j, e->flags & INPUT_F_STALE);
+		break;
+	case INPUT_ADDED:
+	case INPUT_REMOVED:
+	case INPUT_FRAME:
+		break;
+	}
+	jbuf_raw(j, "}");
+	events_send(E, SUB_INPUT);
 }

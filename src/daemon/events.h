@@ -13,6 +13,7 @@
 #include "daemon/daemon.h"
 #include "daemon/jbuf.h"
 #include "daemon/server.h"
+#include "devices/event.h"
 #include "pose/ik.h"
 
 #define EVENTS_BUF (1u << 20)       /* the largest event: a frame's PNG in base64 */
@@ -55,5 +56,7 @@ void events_telemetry(struct events *E, int fig, const struct ik_result *r, uint
  * the margin; and an alert when the margin crosses the figure's threshold.
  */
 void events_stability(struct events *E, int fig);
+/* one input event as the loop takes it from the queue (subscribe input) */
+void events_input(struct events *E, const struct input_event_rec *e);
 
 #endif

@@ -28,6 +28,8 @@ struct loop {
 	uint64_t fps_t0, fps_frames;
 	uint64_t watchdog_us, watchdog_last;
 	struct events events; /* what the clients subscribed to */
+	struct input_queue input; /* from the devices and the socket's input lines */
+	struct can_map panel;     /* the dial panel's map, when one is given */
 	struct scene scene;   /* the views' pictures */
 	int stop;
 };
@@ -41,12 +43,27 @@ real_now(void *ctx)
 	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
 }
 
+static uint64_t
+clock_us(void)
+{
+	return real_now(NULL);
+}
+
 /* settle's clock: every read advances it, so the time limit cuts alike on every run */
 static uint64_t
 virtual_now(void *ctx)
 {
 	struct loop *L = ctx;
 	return L->virtual_us += 20;
+}
+
+/* the input queued since the last frame, taken in order */
+static void
+take_input(struct loop *L)
+{
+	struct input_event_rec e;
+	while (input_queue_pop(&L->input, &e))
+		events_input(&L->events, &e);
 }
 
 /* ---- frames ------------------------------------------------------------------ */
@@ -110,6 +127,7 @@ settle_frame(struct daemon *d, int *changed)
 {
 	struct loop *L = d->loop;
 	struct ik_clock clock = { virtual_now, L };
+	take_input(L);
 	int rc = frame(L, &clock, L->period_us, changed);
 	events_posture_changes(&L->events);
 	return rc;
@@ -277,6 +295,7 @@ live_frame(struct loop *L)
 	int changed;
 	uint64_t draw = (uint64_t)L->d.stats.draw_us;
 	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
+	take_input(L);
 	frame(L, &clock, budget, &changed);
 	uint64_t now = real_now(NULL);
 	L->scene.dirty |= changed;
@@ -313,12 +332,22 @@ loop_run(const struct loop_config *cfg)
 	L->d.run_frame = settle_frame;
 	L->d.subscribe = subscribe;
 	L->d.render_view = render_view;
+	input_queue_init(&L->input);
+	L->d.input = &L->input;
+	L->d.now_us = clock_us;
 	scene_init(&L->scene, cfg->frames_dir);
 	L->period_us = (uint64_t)(1e6 / cfg->fps);
 	L->srv.unix_fd = L->srv.tcp_fd = -1;
 	int status = 1;
 	if (events_init(&L->events, &L->srv, &L->d) < 0)
 		goto out;
+	if (cfg->panel_map) {
+		if (can_map_read(cfg->panel_map, &L->panel, err, sizeof err) < 0) {
+			fprintf(stderr, "postured: panel map: %s\n", err);
+			goto out;
+		}
+		L->d.panel = &L->panel;
+	}
 	if (cfg->fb_device && !(L->scene.fb = sink_fb_open(cfg->fb_device, err, sizeof err))) {
 		fprintf(stderr, "postured: framebuffer %s: %s\n", cfg->fb_device, err);
 		goto out;

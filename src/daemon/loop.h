@@ -20,6 +20,7 @@ struct loop_config {
 	const char *init_file; /* commands for a first start, NULL: none */
 	const char *library_dir; /* shipped figure files, NULL: none */
 	const char *fb_device;   /* a framebuffer for the first view, NULL: none */
+	const char *panel_map;   /* the dial panel's map (devices/can_map.h), NULL: none */
 };
 
 /* runs until SIGTERM or SIGINT; returns the process exit status */

@@ -28,6 +28,8 @@ static const char usage[] =
 	"  --token TOKEN      the token TCP clients must send first (auth TOKEN)\n"
 	"  --init FILE        commands to run when the state is empty (a first start)\n"
 	"  --library DIR      shipped figure files, loaded as 'load figure lib:NAME'\n"
+	"  --panel FILE       the dial panel's map: its axes and buttons by name (see\n"
+	"                     devices/can_map.h; tools/dbc2panel makes one from a DBC file)\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
 	"  --protocol-table   print the command table of PROTOCOL.md and exit\n"
 	"  --help             this text\n"
@@ -37,7 +39,7 @@ static const char usage[] =
 
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
-	char fb[PATH_MAX], token[128];
+	char fb[PATH_MAX], panel[PATH_MAX], token[128];
 	double fps;
 	int tcp;
 };
@@ -56,6 +58,8 @@ set(struct settings *s, const char *key, const char *val)
 		snprintf(s->fb, sizeof s->fb, "%s", val);
 	else if (!strcmp(key, "library"))
 		snprintf(s->library, sizeof s->library, "%s", val);
+	else if (!strcmp(key, "panel"))
+		snprintf(s->panel, sizeof s->panel, "%s", val);
 	else if (!strcmp(key, "init"))
 		snprintf(s->init, sizeof s->init, "%s", val);
 	else if (!strcmp(key, "token"))
@@ -192,6 +196,7 @@ main(int argc, char **argv)
 		s.state_dir, s.frames[0] ? s.frames : "(none)", s.fps, s.tcp ? ", tcp on" : "");
 	struct loop_config cfg = { s.socket, s.state_dir, s.frames[0] ? s.frames : NULL, s.fps,
 				   s.tcp, s.token, s.init[0] ? s.init : NULL,
-				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL };
+				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL,
+				   s.panel[0] ? s.panel : NULL };
 	return loop_run(&cfg);
 }

@@ -243,7 +243,8 @@ def run_transcript(d, transcript):
 @pytest.mark.parametrize("path", TRANSCRIPTS, ids=[p.stem for p in TRANSCRIPTS])
 def test_transcript(daemon_factory, path):
     """Every reply of the transcript matches its expectation."""
-    d = daemon_factory(start=False)
+    panel = ROOT / "tests" / "input" / "panel.map"
+    d = daemon_factory(start=False, extra=("--panel", str(panel)))
     prepare_state_dir(d.state_dir)
     d.start()
     failures = run_transcript(d, Transcript(path))

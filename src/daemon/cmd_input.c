@@ -1,0 +1,166 @@
+/*
+ * cmd_input.c - input over the socket: the same events a mouse, a keyboard
+ * and the dial panel give, put into the same queue, so that scripts and
+ * remote front ends drive the daemon exactly as the devices do.
+ */
+#include <libevdev/libevdev.h>
+#include <linux/input-event-codes.h>
+#include <math.h>
+#include <string.h>
+
+#include "daemon/cmd_ctx.h"
+
+#define INPUT_MOTION_MAX 1e6 /* counts: more in one line is a mistake, not a mouse */
+#define INPUT_WHEEL_MAX 1000 /* detents */
+
+/* queues e as the socket's device; its reply says whether it was queued or merged */
+static int
+inject(struct cmd_ctx *c, struct input_event_rec *e)
+{
+	if (!c->d->input)
+		return cmd_fail(c, "bad-argument", "this daemon takes no input");
+	e->device = INPUT_DEVICE_SOCKET;
+	e->t_us = c->d->now_us ? c->d->now_us() : 0;
+	int rc = input_queue_push(c->d->input, e);
+	if (rc < 0)
+		return cmd_fail(c, "limit", "the input queue is full");
+	/* an injected event is a frame of its own, as one report of a device is */
+	struct input_event_rec end;
+	memset(&end, 0, sizeof end);
+	end.kind = INPUT_FRAME;
+	end.device = e->device;
+	end.t_us = e->t_us;
+	input_queue_push(c->d->input, &end);
+	json_object_set_new(c->result, "queued", json_boolean(rc == 0));
+	return 0;
+}
+
+static struct input_event_rec
+event(enum input_kind kind)
+{
+	struct input_event_rec e;
+	memset(&e, 0, sizeof e);
+	e.kind = (uint8_t)kind;
+	return e;
+}
+
+/* "down" 1, "up" 0, or -1 with the error set */
+static int
+down_up(struct cmd_ctx *c, const char *w)
+{
+	if (!strcmp(w, "down"))
+		return 1;
+	if (!strcmp(w, "up"))
+		return 0;
+	return cmd_fail(c, "bad-argument", "down or up, not '%.20s'", w);
+}
+
+int
+cmd_input_pointer(struct cmd_ctx *c)
+{
+	int v = env_find_view(&c->d->env, c->argv[0]);
+	if (v < 0)
+		return cmd_fail(c, "not-found", "no view '%.60s'", c->argv[0]);
+	const struct env_view *vw = &c->d->env.view[v];
+	double x, y;
+	if (words_number(c->argv[1], UNIT_NONE, &x) < 0 || words_number(c->argv[2], UNIT_NONE, &y) < 0)
+		return cmd_fail(c, "bad-number", "X and Y are pixels, e.g. 320 or 320.5");
+	if (x < 0 || y < 0 || x > vw->width || y > vw->height)
+		return cmd_fail(c, "bad-argument", "(%g, %g) is outside view %s (%d x %d)", x, y,
+				vw->name, vw->width, vw->height);
+	struct input_event_rec e = event(INPUT_POINTER);
+	e.flags = INPUT_F_VIEW;
+	e.code = (uint16_t)v;
+	e.x = x;
+	e.y = y;
+	return inject(c, &e);
+}
+
+int
+cmd_input_motion(struct cmd_ctx *c)
+{
+	double d[2];
+	for (int i = 0; i < 2; i++)
+		if (words_number(c->argv[i], UNIT_NONE, &d[i]) < 0 || fabs(d[i]) > INPUT_MOTION_MAX)
+			return cmd_fail(c, "bad-number", "DX and DY are counts within +-%g",
+					INPUT_MOTION_MAX);
+	struct input_event_rec e = event(INPUT_MOTION);
+	e.x = d[0];
+	e.y = d[1];
+	return inject(c, &e);
+}
+
+int
+cmd_input_button(struct cmd_ctx *c)
+{
+	static const struct {
+		const char *name;
+		uint16_t code;
+	} buttons[] = { { "left", BTN_LEFT }, { "middle", BTN_MIDDLE }, { "right", BTN_RIGHT },
+			{ "side", BTN_SIDE } };
+	int code = -1;
+	for (size_t i = 0; i < sizeof buttons / sizeof *buttons; i++)
+		if (!strcmp(c->argv[0], buttons[i].name))
+			code = buttons[i].code;
+	if (code < 0)
+		return cmd_fail(c, "bad-argument", "buttons are left, middle, right and side");
+	int down = down_up(c, c->argv[1]);
+	if (down < 0)
+		return -1;
+	struct input_event_rec e = event(INPUT_BUTTON);
+	e.code = (uint16_t)code;
+	e.value = down;
+	return inject(c, &e);
+}
+
+int
+cmd_input_key(struct cmd_ctx *c)
+{
+	/* the kernel's names, as libevdev knows them; buttons go through input button */
+	const char *name = c->argv[0];
+	int code = strncmp(name, "KEY_", 4) ? -1 : libevdev_event_code_from_name(EV_KEY, name);
+	if (code < 0)
+		return cmd_fail(c, "bad-argument", "no key '%.40s' (the kernel's names: KEY_A, KEY_ESC)",
+				name);
+	int down = down_up(c, c->argv[1]);
+	if (down < 0)
+		return -1;
+	struct input_event_rec e = event(INPUT_KEY);
+	e.code = (uint16_t)code;
+	e.value = down;
+	return inject(c, &e);
+}
+
+int
+cmd_input_wheel(struct cmd_ctx *c)
+{
+	double n;
+	if (words_number(c->argv[0], UNIT_NONE, &n) < 0 || n != floor(n) || fabs(n) > INPUT_WHEEL_MAX)
+		return cmd_fail(c, "bad-number", "N is a whole number of detents within +-%d",
+				INPUT_WHEEL_MAX);
+	struct input_event_rec e = event(INPUT_WHEEL);
+	e.code = INPUT_WHEEL_V;
+	e.value = (int32_t)n;
+	e.x = n * 120;
+	return inject(c, &e);
+}
+
+int
+cmd_input_valuator(struct cmd_ctx *c)
+{
+	const struct can_map *m = c->d->panel;
+	int k = m ? can_map_find(m, c->argv[0]) : -1;
+	if (k >= 0 && m->line[k].kind == CAN_MAP_BUTTON)
+		return cmd_fail(c, "bad-argument", "'%.60s' is a button of the panel, not an axis",
+				c->argv[0]);
+	if (k < 0)
+		return cmd_fail(c, "not-found", "no valuator '%.60s'%s", c->argv[0],
+				m ? "" : " (no panel map is loaded)");
+	double v;
+	if (words_number(c->argv[1], UNIT_NONE, &v) < 0)
+		return cmd_fail(c, "bad-number", "V is a number");
+	struct input_event_rec e = event(INPUT_VALUATOR);
+	e.code = (uint16_t)k;
+	e.x = v;
+	return inject(c, &e);
+}
