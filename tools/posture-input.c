@@ -1,0 +1,528 @@
+/*
+ * posture-input - recorded input through the daemon's own decoders.
+ *
+ *   posture-input describe FILE          a HID descriptor's reports, fields, usages, bits
+ *   posture-input decode FILE [--map M]  a recording through the decoders, one event a line
+ *   posture-input decode --evemu FILE    a HID recording as the evdev events the kernel
+ *                                        would emit, in evemu's E: lines
+ *
+ * Recordings are read in the ecosystem's formats, told apart by their
+ * content: evemu (evdev), hid-recorder (raw HID), candump -l (CAN; needs
+ * the panel map). The bytes take the path a device's bytes take: evemu
+ * events become struct input_event records, hid-recorder lines reports,
+ * candump lines struct can_frame.
+ */
+#include <errno.h>
+#include <libevdev/libevdev.h>
+#include <linux/can.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "devices/can_input.h"
+#include "devices/can_map.h"
+#include "devices/evdev_input.h"
+#include "devices/hid_desc.h"
+#include "devices/hid_input.h"
+#include "devices/hid_keymap.h"
+#include "devices/queue.h"
+#include "devices/rec_candump.h"
+#include "devices/rec_evemu.h"
+#include "devices/rec_hid.h"
+
+static const char usage[] =
+	"usage: posture-input describe FILE\n"
+	"       posture-input decode FILE [--map PANEL]\n"
+	"       posture-input decode --evemu FILE.hid\n"
+	"\n"
+	"describe: a HID report descriptor's input reports, fields, usages and bit offsets;\n"
+	"  FILE is a hid-recorder file (every device in it) or a raw descriptor (the bytes of\n"
+	"  /sys/class/hidraw/hidrawN/device/report_descriptor, or the same as hex text).\n"
+	"decode: a recording through the daemon's decoders, one normalised event a line\n"
+	"  (seconds from the first event, device, kind, values). FILE is an evemu recording,\n"
+	"  a hid-recorder file or a candump -l log; a log needs --map, the panel map, and gives\n"
+	"  one line a decoded frame: (time) ID NAME=value ..., with the log's own times.\n"
+	"decode --evemu: for a hid-recorder file, the evdev events the kernel's hid-input\n"
+	"  would emit, as evemu E: lines, a SYN_REPORT after each report.\n";
+
+enum format { FMT_EVEMU, FMT_HID, FMT_CANDUMP, FMT_UNKNOWN };
+
+/* the whole file, NUL-terminated; NULL with err */
+static char *
+slurp(const char *path, size_t *n, char *err, size_t errlen)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f) {
+		snprintf(err, errlen, "%s: %s", path, strerror(errno));
+		return NULL;
+	}
+	size_t cap = 1 << 16, len = 0;
+	char *buf = malloc(cap + 1);
+	while (buf) {
+		size_t got = fread(buf + len, 1, cap - len, f);
+		len += got;
+		if (len < cap)
+			break;
+		char *more = realloc(buf, 2 * cap + 1);
+		if (!more) {
+			free(buf);
+			buf = NULL;
+			break;
+		}
+		buf = more;
+		cap *= 2;
+	}
+	int bad = ferror(f);
+	fclose(f);
+	if (!buf || bad) {
+		free(buf);
+		snprintf(err, errlen, "%s: %s", path, bad ? "read error" : "out of memory");
+		return NULL;
+	}
+	buf[len] = 0;
+	*n = len;
+	return buf;
+}
+
+/* the format by the first line that says: evemu's header or lines, R: (HID), '(' (candump) */
+static enum format
+sniff(const char *text, size_t n)
+{
+	const char *p = text, *end = text + n;
+	while (p < end) {
+		const char *nl = memchr(p, '\n', (size_t)(end - p));
+		size_t len = nl ? (size_t)(nl - p) : (size_t)(end - p);
+		if (len >= 7 && !strncmp(p, "# EVEMU", 7))
+			return FMT_EVEMU;
+		if (len >= 2 && p[1] == ':' && strchr("BAPLS", p[0]))
+			return FMT_EVEMU;
+		if (len >= 2 && !strncmp(p, "R:", 2))
+			return FMT_HID;
+		if (len >= 1 && p[0] == '(')
+			return FMT_CANDUMP;
+		p = nl ? nl + 1 : end;
+	}
+	return FMT_UNKNOWN;
+}
+
+static void
+print_time(uint64_t t_us)
+{
+	printf("%llu.%06llu", (unsigned long long)(t_us / 1000000),
+	       (unsigned long long)(t_us % 1000000));
+}
+
+/* the shortest decimal that reads back as v, as Python's repr finds it */
+static const char *
+num(double v)
+{
+	static char buf[32];
+	if (v == (double)(long long)v && v > -1e15 && v < 1e15) { /* whole: no exponent */
+		snprintf(buf, sizeof buf, "%lld", (long long)v);
+		return buf;
+	}
+	for (int prec = 1; prec <= 17; prec++) {
+		snprintf(buf, sizeof buf, "%.*g", prec, v);
+		if (strtod(buf, NULL) == v)
+			break;
+	}
+	return buf;
+}
+
+static void
+print_num(double v)
+{
+	printf(" %s", num(v));
+}
+
+/* one normalised event, one line */
+static void
+print_event(const struct input_event_rec *e, const struct can_map *map)
+{
+	print_time(e->t_us);
+	printf(" %u %s", e->device, input_kind_to_str((enum input_kind)e->kind));
+	const char *name;
+	switch ((enum input_kind)e->kind) {
+	case INPUT_MOTION:
+	case INPUT_POINTER:
+		print_num(e->x);
+		print_num(e->y);
+		break;
+	case INPUT_BUTTON:
+	case INPUT_KEY:
+		name = libevdev_event_code_get_name(EV_KEY, e->code);
+		if (name)
+			printf(" %s %d", name, e->value);
+		else
+			printf(" %u %d", e->code, e->value);
+		break;
+	case INPUT_WHEEL:
+		printf(" %s %d", e->code == INPUT_WHEEL_H ? "horizontal" : "vertical", e->value);
+		print_num(e->x);
+		break;
+	case INPUT_VALUATOR:
+		if (map && e->code < map->n)
+			printf(" %s", map->line[e->code].name);
+		else
+			printf(" %u", e->code);
+		print_num(e->x);
+		if (e->flags & INPUT_F_STALE)
+			printf(" stale");
+		break;
+	case INPUT_ADDED:
+	case INPUT_REMOVED:
+	case INPUT_FRAME:
+		break;
+	}
+	putchar('\n');
+}
+
+static void
+drain(struct input_queue *q, const struct can_map *map)
+{
+	struct input_event_rec e;
+	while (input_queue_pop(q, &e))
+		print_event(&e, map);
+}
+
+static int
+decode_evemu(const char *path, struct input_queue *q)
+{
+	char err[512];
+	static struct rec_evemu r;
+	if (rec_evemu_read(path, &r, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return 1;
+	}
+	size_t need = rec_evemu_to_records(&r, NULL, 0);
+	uint8_t *rec = malloc(need ? need : 1);
+	if (!rec) {
+		rec_evemu_free(&r);
+		fprintf(stderr, "posture-input: out of memory\n");
+		return 1;
+	}
+	rec_evemu_to_records(&r, rec, need);
+	static struct evdev_input e;
+	evdev_input_init(&e, 0, path);
+	rec_evemu_apply_abs(&r, &e);
+	/* a few hundred records at a time, so the queue never fills */
+	const size_t chunk = 256 * sizeof(struct input_event);
+	int rc = 0;
+	for (size_t off = 0; off < need; off += chunk) {
+		size_t n = need - off < chunk ? need - off : chunk;
+		rc |= evdev_input_feed(&e, rec + off, n, q) < 0;
+		drain(q, NULL);
+	}
+	free(rec);
+	rec_evemu_free(&r);
+	return rc;
+}
+
+/* each device's descriptor, parsed; -1 with a message */
+static int
+parse_devices(const char *path, const struct rec_hid *r, struct hid_desc *desc)
+{
+	for (unsigned i = 0; i < r->ndevices; i++) {
+		char err[256];
+		if (hid_desc_parse(r->devices[i].desc, r->devices[i].desc_len, &desc[i], err,
+				   sizeof err) < 0) {
+			fprintf(stderr, "posture-input: %s: device %u: %s\n", path, i, err);
+			return -1;
+		}
+	}
+	return 0;
+}
+
+/* one evdev event as evemu-record writes it */
+static void
+put(unsigned type, unsigned code, int32_t value, uint64_t t_us, uint64_t *last_ms)
+{
+	struct rec_evemu_event ev = { .t_us = t_us, .sec = t_us / 1000000,
+				      .usec = (uint32_t)(t_us % 1000000), .type = (uint16_t)type,
+				      .code = (uint16_t)code, .value = value };
+	rec_evemu_write_event(stdout, &ev, last_ms);
+}
+
+/*
+ * The HID usage the kernel reports as MSC_SCAN before a key or button
+ * changes (hid-input): a mouse's button n is BTN_MOUSE + n - 1, a key the
+ * keyboard usage that maps to it. 0 when none does.
+ */
+static uint32_t
+scancode(const struct input_event_rec *e)
+{
+	if (e->kind == INPUT_BUTTON && e->code >= BTN_MOUSE && e->code < BTN_MOUSE + 16)
+		return 0x90000u | (uint32_t)(e->code - BTN_MOUSE + 1);
+	for (uint32_t id = 0; id < 256 && e->kind == INPUT_KEY; id++)
+		if (hid_keymap_key(id) == e->code)
+			return 0x70000u | id;
+	return 0;
+}
+
+/* the evdev events the kernel emits for one normalised event */
+static void
+print_evdev(const struct input_event_rec *e, uint64_t t_us, uint64_t *last_ms)
+{
+	switch ((enum input_kind)e->kind) {
+	case INPUT_MOTION:
+		if (e->x)
+			put(EV_REL, REL_X, (int32_t)e->x, t_us, last_ms);
+		if (e->y)
+			put(EV_REL, REL_Y, (int32_t)e->y, t_us, last_ms);
+		break;
+	case INPUT_WHEEL: {
+		/* hid-input's scroll: whole detents, then the same in 1/120 */
+		int h = e->code == INPUT_WHEEL_H;
+		if (e->value)
+			put(EV_REL, h ? REL_HWHEEL : REL_WHEEL, e->value, t_us, last_ms);
+		if (e->x)
+			put(EV_REL, h ? REL_HWHEEL_HI_RES : REL_WHEEL_HI_RES, (int32_t)e->x, t_us,
+			    last_ms);
+		break;
+	}
+	case INPUT_BUTTON:
+	case INPUT_KEY: {
+		uint32_t scan = scancode(e);
+		if (scan)
+			put(EV_MSC, MSC_SCAN, (int32_t)scan, t_us, last_ms);
+		put(EV_KEY, e->code, e->value, t_us, last_ms);
+		break;
+	}
+	case INPUT_POINTER:
+	case INPUT_VALUATOR:
+	case INPUT_ADDED:
+	case INPUT_REMOVED:
+	case INPUT_FRAME:
+		break;
+	}
+}
+
+static int
+decode_hid(const char *path, int as_evemu, struct input_queue *q)
+{
+	char err[512];
+	static struct rec_hid r;
+	static struct hid_desc desc[REC_HID_MAX_DEVICES];
+	static struct hid_input in[REC_HID_MAX_DEVICES];
+	if (rec_hid_read(path, &r, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return 1;
+	}
+	if (parse_devices(path, &r, desc) < 0) {
+		rec_hid_free(&r);
+		return 1;
+	}
+	for (unsigned i = 0; i < r.ndevices; i++)
+		hid_input_init(&in[i], &desc[i], (uint16_t)i, r.devices[i].name);
+	if (as_evemu && r.ndevices)
+		printf("# EVEMU 1.3\nN: %s\nI: %04x %04x %04x 0000\n", r.devices[0].name,
+		       r.devices[0].bus, r.devices[0].vid, r.devices[0].pid);
+	int dropped = 0;
+	uint64_t last_ms = 0;
+	for (size_t k = 0; k < r.nevents; k++) {
+		const struct rec_hid_event *ev = &r.events[k];
+		int bad = hid_input_feed(&in[ev->device], ev->bytes, ev->len, ev->t_us, q) < 0;
+		dropped += bad;
+		if (!as_evemu) {
+			drain(q, NULL);
+			continue;
+		}
+		/* one report, then a SYN_REPORT, as hid-input ends a report */
+		struct input_event_rec e;
+		int any = 0;
+		while (input_queue_pop(q, &e)) {
+			print_evdev(&e, ev->t_us, &last_ms);
+			any |= e.kind != INPUT_FRAME;
+		}
+		if (any) /* the input core sends no empty frame */
+			put(EV_SYN, SYN_REPORT, 0, ev->t_us, &last_ms);
+	}
+	if (dropped)
+		fprintf(stderr, "posture-input: %s: reports dropped (see above)\n", path);
+	rec_hid_free(&r);
+	return 0;
+}
+
+static int
+decode_candump(const char *path, const char *map_path)
+{
+	char err[512];
+	static struct can_map map;
+	static struct rec_candump r;
+	if (!map_path) {
+		fprintf(stderr, "posture-input: %s is a candump log: give the panel map (--map)\n",
+			path);
+		return 2;
+	}
+	if (can_map_read(map_path, &map, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return 1;
+	}
+	if (rec_candump_read(path, &r, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return 1;
+	}
+	int line[CAN_MAP_MAX_LINES];
+	double value[CAN_MAP_MAX_LINES];
+	for (size_t k = 0; k < r.n; k++) {
+		const struct rec_candump_frame *f = &r.frames[k];
+		if (f->can_id & (CAN_ERR_FLAG | CAN_RTR_FLAG))
+			continue;
+		int n = can_input_decode(&map, f->can_id, f->data, f->len, line, value,
+					 CAN_MAP_MAX_LINES);
+		if (n <= 0)
+			continue;
+		int ext = (f->can_id & CAN_EFF_FLAG) != 0;
+		printf("(%llu.%06llu) %0*X", (unsigned long long)(f->t_abs_us / 1000000),
+		       (unsigned long long)(f->t_abs_us % 1000000), ext ? 8 : 3,
+		       f->can_id & (ext ? CAN_EFF_MASK : CAN_SFF_MASK));
+		for (int i = 0; i < n; i++) {
+			printf(" %s=%s", map.line[line[i]].name, num(value[i]));
+		}
+		putchar('\n');
+	}
+	rec_candump_free(&r);
+	return 0;
+}
+
+/* hex text ("05 01 09 02 ...", # comments) into bytes; -1 when it is not hex text */
+static long
+hex_text(const char *text, size_t n, uint8_t *dest, size_t max)
+{
+	size_t k = 0;
+	for (size_t i = 0; i < n;) {
+		if (text[i] == '#') { /* a comment to the end of the line */
+			while (i < n && text[i] != '\n')
+				i++;
+			continue;
+		}
+		if (strchr(" \t\r\n,", text[i])) {
+			i++;
+			continue;
+		}
+		if (i + 1 < n && text[i] == '0' && (text[i + 1] == 'x' || text[i + 1] == 'X'))
+			i += 2;
+		unsigned v;
+		int used;
+		if (i + 2 > n || sscanf(text + i, "%2x%n", &v, &used) != 1 || used != 2 || k == max)
+			return -1;
+		dest[k++] = (uint8_t)v;
+		i += 2;
+	}
+	return (long)k;
+}
+
+static int
+describe(const char *path)
+{
+	char err[512];
+	size_t n;
+	char *text = slurp(path, &n, err, sizeof err);
+	if (!text) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return 1;
+	}
+	static struct hid_desc d;
+	int rc = 0;
+	if (sniff(text, n) == FMT_HID) {
+		static struct rec_hid r;
+		if (rec_hid_parse(text, n, path, &r, err, sizeof err) < 0) {
+			fprintf(stderr, "posture-input: %s\n", err);
+			free(text);
+			return 1;
+		}
+		for (unsigned i = 0; i < r.ndevices && !rc; i++) {
+			printf("device %u: %s (bus %04x, %04x:%04x), %u descriptor bytes\n", i,
+			       r.devices[i].name, r.devices[i].bus, r.devices[i].vid, r.devices[i].pid,
+			       r.devices[i].desc_len);
+			if (hid_desc_parse(r.devices[i].desc, r.devices[i].desc_len, &d, err,
+					   sizeof err) < 0) {
+				fprintf(stderr, "posture-input: %s: device %u: %s\n", path, i, err);
+				rc = 1;
+			} else {
+				hid_desc_describe(&d, stdout);
+			}
+		}
+		rec_hid_free(&r);
+		free(text);
+		return rc;
+	}
+	static uint8_t bytes[HID_DESC_MAX_BYTES];
+	long nb = hex_text(text, n, bytes, sizeof bytes);
+	const uint8_t *raw = nb >= 0 ? bytes : (const uint8_t *)text;
+	size_t rn = nb >= 0 ? (size_t)nb : n;
+	if (hid_desc_parse(raw, rn, &d, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-input: %s: %s\n", path, err);
+		rc = 1;
+	} else {
+		hid_desc_describe(&d, stdout);
+	}
+	free(text);
+	return rc;
+}
+
+static int
+decode(int argc, char **argv)
+{
+	const char *file = NULL, *map = NULL;
+	int evemu = 0;
+	for (int i = 0; i < argc; i++) {
+		if (!strcmp(argv[i], "--evemu"))
+			evemu = 1;
+		else if (!strcmp(argv[i], "--map") && i + 1 < argc)
+			map = argv[++i];
+		else if (argv[i][0] != '-' && !file)
+			file = argv[i];
+		else {
+			fputs(usage, stderr);
+			return 2;
+		}
+	}
+	if (!file) {
+		fputs(usage, stderr);
+		return 2;
+	}
+	char err[512];
+	size_t n;
+	char *text = slurp(file, &n, err, sizeof err);
+	if (!text) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return 1;
+	}
+	enum format fmt = sniff(text, n);
+	free(text);
+	static struct input_queue q;
+	input_queue_init(&q);
+	if (evemu && fmt != FMT_HID) {
+		fprintf(stderr, "posture-input: --evemu takes a hid-recorder file\n");
+		return 2;
+	}
+	switch (fmt) {
+	case FMT_EVEMU:
+		return decode_evemu(file, &q);
+	case FMT_HID:
+		return decode_hid(file, evemu, &q);
+	case FMT_CANDUMP:
+		return decode_candump(file, map);
+	case FMT_UNKNOWN:
+		break;
+	}
+	fprintf(stderr, "posture-input: %s: not an evemu, hid-recorder or candump recording\n",
+		file);
+	return 1;
+}
+
+int
+main(int argc, char **argv)
+{
+	if (argc >= 3 && !strcmp(argv[1], "describe") && argc == 3)
+		return describe(argv[2]);
+	if (argc >= 3 && !strcmp(argv[1], "decode"))
+		return decode(argc - 2, argv + 2);
+	if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+		fputs(usage, stdout);
+		return 0;
+	}
+	fputs(usage, stderr);
+	return 2;
+}
