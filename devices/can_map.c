@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "devices/textfile.h"
+
 #define MAX_TOKENS 16
 
 /* the button names a map may give; the first of two names for one code is written */
@@ -539,41 +541,13 @@ can_map_parse(const char *text, size_t n, const char *name, struct can_map *dest
 int
 can_map_read(const char *path, struct can_map *dest, char *err, size_t errlen)
 {
-	FILE *f = fopen(path, "rb");
-	if (!f)
-		return fail(err, errlen, path, 0, strerror(errno));
-	char *text = NULL;
-	size_t n = 0, cap = 0;
-	for (;;) {
-		if (n == cap) {
-			cap = cap ? 2 * cap : 65536;
-			if (cap > (64u << 20)) {
-				free(text);
-				fclose(f);
-				return fail(err, errlen, path, 0, "file too large");
-			}
-			char *t = realloc(text, cap);
-			if (!t) {
-				free(text);
-				fclose(f);
-				return fail(err, errlen, path, 0, "out of memory");
-			}
-			text = t;
-		}
-		size_t got = fread(text + n, 1, cap - n, f);
-		n += got;
-		if (got == 0)
-			break;
-	}
-	int bad = ferror(f);
-	fclose(f);
-	if (bad) {
-		free(text);
-		return fail(err, errlen, path, 0, "read error");
-	}
-	int r = can_map_parse(text, n, path, dest, err, errlen);
+	size_t n;
+	char *text = textfile_read(path, &n, err, errlen);
+	if (!text)
+		return -1;
+	int rc = can_map_parse(text, n, path, dest, err, errlen);
 	free(text);
-	return r;
+	return rc;
 }
 
 /* the shortest %g form of v that reads back as v */

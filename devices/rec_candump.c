@@ -1,10 +1,11 @@
 /* rec_candump.c - candump -l logs, read and written (see rec_candump.h) */
 #include "devices/rec_candump.h"
 
-#include <errno.h>
 #include <linux/can.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "devices/textfile.h"
 
 #define MAX_LINE 4096
 
@@ -244,36 +245,13 @@ int
 rec_candump_read(const char *path, struct rec_candump *dest, char *err, size_t errlen)
 {
 	memset(dest, 0, sizeof *dest);
-	FILE *f = fopen(path, "rb");
-	if (!f)
-		return fail(err, errlen, path, 0, strerror(errno));
-	char *text = NULL;
-	size_t n = 0, cap = 0;
-	for (;;) {
-		if (n == cap) {
-			cap = cap ? 2 * cap : 65536;
-			char *t = cap > ((size_t)1 << 30) ? NULL : realloc(text, cap);
-			if (!t) {
-				free(text);
-				fclose(f);
-				return fail(err, errlen, path, 0, "file too large");
-			}
-			text = t;
-		}
-		size_t got = fread(text + n, 1, cap - n, f);
-		n += got;
-		if (got == 0)
-			break;
-	}
-	int bad = ferror(f);
-	fclose(f);
-	if (bad) {
-		free(text);
-		return fail(err, errlen, path, 0, "read error");
-	}
-	int r = rec_candump_parse(text, n, path, dest, err, errlen);
+	size_t n;
+	char *text = textfile_read(path, &n, err, errlen);
+	if (!text)
+		return -1;
+	int rc = rec_candump_parse(text, n, path, dest, err, errlen);
 	free(text);
-	return r;
+	return rc;
 }
 
 int

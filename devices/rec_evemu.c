@@ -1,18 +1,18 @@
 /* rec_evemu.c - evemu recordings read and written (see rec_evemu.h) */
 #include "devices/rec_evemu.h"
 
-#include <errno.h>
 #include <inttypes.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "devices/textfile.h"
 
 /* the newest format this reader knows and the writer writes */
 #define FORMAT_MAJOR 1
 #define FORMAT_MINOR 3
 
 /* a file larger than this is refused before reading */
-#define FILE_MAX ((size_t)1 << 30)
 
 struct code_name {
 	uint8_t type;
@@ -1281,42 +1281,12 @@ int
 rec_evemu_read(const char *path, struct rec_evemu *dest, char *err, size_t errlen)
 {
 	memset(dest, 0, sizeof *dest);
-	FILE *f = fopen(path, "rb");
-	if (!f) {
-		snprintf(err, errlen, "%s: %s", path, strerror(errno));
+	size_t n;
+	char *text = textfile_read(path, &n, err, errlen);
+	if (!text)
 		return -1;
-	}
-	char *buf = NULL;
-	size_t len = 0, cap = 0;
-	int bad = 0;
-	for (;;) {
-		if (len == cap) {
-			if (cap >= FILE_MAX) {
-				snprintf(err, errlen, "%s: larger than %zu bytes", path, FILE_MAX);
-				bad = 1;
-				break;
-			}
-			cap = cap ? cap * 2 : 65536;
-			char *grown = realloc(buf, cap);
-			if (!grown) {
-				snprintf(err, errlen, "%s: out of memory", path);
-				bad = 1;
-				break;
-			}
-			buf = grown;
-		}
-		size_t k = fread(buf + len, 1, cap - len, f);
-		len += k;
-		if (k == 0)
-			break;
-	}
-	if (!bad && ferror(f)) {
-		snprintf(err, errlen, "%s: read error", path);
-		bad = 1;
-	}
-	fclose(f);
-	int rc = bad ? -1 : rec_evemu_parse(buf ? buf : "", len, path, dest, err, errlen);
-	free(buf);
+	int rc = rec_evemu_parse(text, n, path, dest, err, errlen);
+	free(text);
 	return rc;
 }
 

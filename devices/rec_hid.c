@@ -1,11 +1,12 @@
 /* rec_hid.c - hid-recorder files (see rec_hid.h) */
 #include "devices/rec_hid.h"
 
-#include <errno.h>
 #include <inttypes.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "devices/textfile.h"
 
 struct reader {
 	const char *name;
@@ -365,35 +366,13 @@ int
 rec_hid_read(const char *path, struct rec_hid *dest, char *err, size_t errlen)
 {
 	memset(dest, 0, sizeof *dest);
-	FILE *f = fopen(path, "rb");
-	if (!f) {
-		snprintf(err, errlen, "%s: %s", path, strerror(errno));
+	size_t n;
+	char *text = textfile_read(path, &n, err, errlen);
+	if (!text)
 		return -1;
-	}
-	size_t cap = 0, n = 0;
-	char *buf = NULL;
-	for (;;) {
-		if (grow((void **)&buf, &cap, n + 65536, 1) < 0) {
-			snprintf(err, errlen, "%s: out of memory", path);
-			free(buf);
-			fclose(f);
-			return -1;
-		}
-		size_t k = fread(buf + n, 1, cap - n, f);
-		n += k;
-		if (k == 0)
-			break;
-	}
-	int bad = ferror(f);
-	fclose(f);
-	if (bad) {
-		snprintf(err, errlen, "%s: read error", path);
-		free(buf);
-		return -1;
-	}
-	int ret = rec_hid_parse(buf, n, path, dest, err, errlen);
-	free(buf);
-	return ret;
+	int rc = rec_hid_parse(text, n, path, dest, err, errlen);
+	free(text);
+	return rc;
 }
 
 static void

@@ -29,6 +29,7 @@
 #include "devices/rec_candump.h"
 #include "devices/rec_evemu.h"
 #include "devices/rec_hid.h"
+#include "devices/textfile.h"
 
 static const char usage[] =
 	"usage: posture-input describe FILE\n"
@@ -46,43 +47,6 @@ static const char usage[] =
 	"  would emit, as evemu E: lines, a SYN_REPORT after each report.\n";
 
 enum format { FMT_EVEMU, FMT_HID, FMT_CANDUMP, FMT_UNKNOWN };
-
-/* the whole file, NUL-terminated; NULL with err */
-static char *
-slurp(const char *path, size_t *n, char *err, size_t errlen)
-{
-	FILE *f = fopen(path, "rb");
-	if (!f) {
-		snprintf(err, errlen, "%s: %s", path, strerror(errno));
-		return NULL;
-	}
-	size_t cap = 1 << 16, len = 0;
-	char *buf = malloc(cap + 1);
-	while (buf) {
-		size_t got = fread(buf + len, 1, cap - len, f);
-		len += got;
-		if (len < cap)
-			break;
-		char *more = realloc(buf, 2 * cap + 1);
-		if (!more) {
-			free(buf);
-			buf = NULL;
-			break;
-		}
-		buf = more;
-		cap *= 2;
-	}
-	int bad = ferror(f);
-	fclose(f);
-	if (!buf || bad) {
-		free(buf);
-		snprintf(err, errlen, "%s: %s", path, bad ? "read error" : "out of memory");
-		return NULL;
-	}
-	buf[len] = 0;
-	*n = len;
-	return buf;
-}
 
 /* the format by the first line that says: evemu's header or lines, R: (HID), '(' (candump) */
 static enum format
@@ -417,7 +381,7 @@ describe(const char *path)
 {
 	char err[512];
 	size_t n;
-	char *text = slurp(path, &n, err, sizeof err);
+	char *text = textfile_read(path, &n, err, sizeof err);
 	if (!text) {
 		fprintf(stderr, "posture-input: %s\n", err);
 		return 1;
@@ -484,7 +448,7 @@ decode(int argc, char **argv)
 	}
 	char err[512];
 	size_t n;
-	char *text = slurp(file, &n, err, sizeof err);
+	char *text = textfile_read(file, &n, err, sizeof err);
 	if (!text) {
 		fprintf(stderr, "posture-input: %s\n", err);
 		return 1;

@@ -113,11 +113,10 @@ def build(tmp, name, source, *args):
 @pytest.fixture(scope="module")
 def tools(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("evemu")
-    ours = [str(ROOT / "devices" / f) for f in
-            ("rec_evemu.c", "evdev_input.c", "devlog.c", "queue.c", "event.c")]
+    ours = sorted(str(p) for p in (ROOT / "devices").glob("*.c"))  # the whole layer
     return {
         "evemu": build(tmp, "evemu_tool", EVEMU_TOOL, "-levemu"),
-        "ours": build(tmp, "our_tool", OUR_TOOL, *ours),
+        "ours": build(tmp, "our_tool", OUR_TOOL, *ours, "-lm"),
         "libevdev": build(tmp, "libevdev_names", LIBEVDEV_NAMES, "-I/usr/include/libevdev-1.0",
                           "-levdev"),
         "tmp": tmp,

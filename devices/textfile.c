@@ -1,0 +1,50 @@
+/* textfile.c - a whole file into memory (see textfile.h) */
+#include "devices/textfile.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+char *
+textfile_read(const char *path, size_t *n, char *err, size_t errlen)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f) {
+		snprintf(err, errlen, "%s: %s", path, strerror(errno));
+		return NULL;
+	}
+	char *buf = NULL;
+	size_t len = 0, cap = 0;
+	const char *why = NULL;
+	for (;;) {
+		if (len + 1 >= cap) { /* room for the terminating NUL too */
+			if (cap >= TEXTFILE_MAX) {
+				why = "file too large";
+				break;
+			}
+			cap = cap ? 2 * cap : 65536;
+			char *grown = realloc(buf, cap);
+			if (!grown) {
+				why = "out of memory";
+				break;
+			}
+			buf = grown;
+		}
+		size_t k = fread(buf + len, 1, cap - 1 - len, f);
+		len += k;
+		if (k == 0)
+			break;
+	}
+	if (!why && ferror(f))
+		why = "read error";
+	fclose(f);
+	if (why) {
+		snprintf(err, errlen, "%s: %s", path, why);
+		free(buf);
+		return NULL;
+	}
+	buf[len] = 0;
+	*n = len;
+	return buf;
+}

@@ -1,0 +1,20 @@
+/*
+ * textfile.h - a whole text file read into memory, for the readers of
+ * maps and recordings (which all parse from a buffer, so that the fuzzers
+ * reach them the same way).
+ */
+#ifndef POSTURE_DEVICES_TEXTFILE_H
+#define POSTURE_DEVICES_TEXTFILE_H
+
+#include <stddef.h>
+
+#define TEXTFILE_MAX ((size_t)256 << 20) /* larger files are refused */
+
+/*
+ * The file at path, NUL-terminated, its length in *n: malloc'd, for the
+ * caller to free. NULL with "path: why" in err when it cannot be opened or
+ * read, is larger than TEXTFILE_MAX or memory runs out.
+ */
+char *textfile_read(const char *path, size_t *n, char *err, size_t errlen);
+
+#endif
