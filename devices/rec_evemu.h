@@ -115,12 +115,16 @@ rec_evemu_to_records(const struct rec_evemu *r, uint8_t *dest, size_t max);
 int
 rec_evemu_apply_abs(const struct rec_evemu *r, struct evdev_input *dest);
 
-/* the kernel's name of an event type ("EV_KEY"), or NULL */
+/* rec_evemu_data.c: the kernel's name of an event type ("EV_KEY"), or NULL */
 const char *
 rec_evemu_type_name(unsigned type);
 
 /* the kernel's name of an event code ("BTN_LEFT"), or NULL */
 const char *
 rec_evemu_code_name(unsigned type, unsigned code);
+
+/* the kernel's name of an input property ("INPUT_PROP_POINTER"), or NULL */
+const char *
+rec_evemu_prop_name(unsigned prop);
 
 #endif
