@@ -24,6 +24,8 @@ PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
 	libevdev-dev clang evemu-tools libevemu-dev
+# without their recommends: QEMU boots the kernel test tier's guest (tests/guest)
+DEB_PKGS_LEAN := qemu-system-x86
 
 # the layers, bottom up; each folder includes only from those before it (make layer-check)
 LAYERS    := figure pose draw interact daemon
@@ -85,13 +87,17 @@ deps: $(BUILD)/.deps-apt $(VENV)/.installed
 
 $(BUILD)/.deps-apt: Makefile
 	@mkdir -p $(BUILD)
-	@missing=$$(for p in $(DEB_PKGS); do \
+	@missing=$$(for p in $(DEB_PKGS) $(DEB_PKGS_LEAN); do \
 		dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; \
 	done); \
 	if [ -n "$$missing" ]; then \
 		echo "deps: installing Debian packages:" $$missing; \
 		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
-		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
+		lean=$$(for p in $$missing; do case " $(DEB_PKGS_LEAN) " in *" $$p "*) echo $$p;; esac; done); \
+		rest=$$(for p in $$missing; do case " $(DEB_PKGS_LEAN) " in *" $$p "*) ;; *) echo $$p;; esac; done); \
+		{ [ -z "$$rest" ] || $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$rest; } && \
+		{ [ -z "$$lean" ] || $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+			--no-install-recommends $$lean; }; \
 	fi
 	@touch $@
 
@@ -120,7 +126,7 @@ unit-test: $(rel_TESTS) $(san_TESTS) $(rel_TOOLS)
 	done
 
 system-test: $(rel_TOOLS) | deps
-	POSTURE_BUILD=$(BUILD)/rel $(PY) -m pytest -q tests/system tests/tools
+	POSTURE_BUILD=$(BUILD)/rel $(PY) -m pytest -q -rs tests/system tests/tools tests/guest
 
 check: layer-check unit-test
 
