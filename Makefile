@@ -23,7 +23,7 @@ VENV    := .venv
 PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
-	libevdev-dev clang evemu-tools libevemu-dev
+	libevdev-dev clang evemu-tools libevemu-dev umockdev
 # without their recommends: QEMU boots the kernel test tier's guest (tests/guest)
 DEB_PKGS_LEAN := qemu-system-x86
 

@@ -5,6 +5,9 @@
  *   posture-input decode FILE [--map M]  a recording through the decoders, one event a line
  *   posture-input decode --evemu FILE    a HID recording as the evdev events the kernel
  *                                        would emit, in evemu's E: lines
+ *   posture-input record evdev:PATH [-o FILE] [--count N] [--seconds S] [--decode]
+ *                                        a real device into an evemu file (or, with
+ *                                        --decode, through the backend's decoder)
  *
  * Recordings are read in the ecosystem's formats, told apart by their
  * content: evemu (evdev), hid-recorder (raw HID), candump -l (CAN; needs
@@ -15,12 +18,16 @@
 #include <errno.h>
 #include <libevdev/libevdev.h>
 #include <linux/can.h>
+#include <poll.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "devices/can_input.h"
 #include "devices/can_map.h"
+#include "devices/evdev_dev.h"
 #include "devices/evdev_input.h"
 #include "devices/hid_desc.h"
 #include "devices/hid_input.h"
@@ -35,6 +42,8 @@ static const char usage[] =
 	"usage: posture-input describe FILE\n"
 	"       posture-input decode FILE [--map PANEL]\n"
 	"       posture-input decode --evemu FILE.hid\n"
+	"       posture-input record evdev:PATH [-o FILE] [--count N] [--seconds S] [--decode]\n"
+	"       posture-input record --fd N [...]   (tests: records from an inherited fd)\n"
 	"\n"
 	"describe: a HID report descriptor's input reports, fields, usages and bit offsets;\n"
 	"  FILE is a hid-recorder file (every device in it) or a raw descriptor (the bytes of\n"
@@ -44,7 +53,13 @@ static const char usage[] =
 	"  a hid-recorder file or a candump -l log; a log needs --map, the panel map, and gives\n"
 	"  one line a decoded frame: (time) ID NAME=value ..., with the log's own times.\n"
 	"decode --evemu: for a hid-recorder file, the evdev events the kernel's hid-input\n"
-	"  would emit, as evemu E: lines, a SYN_REPORT after each report.\n";
+	"  would emit, as evemu E: lines, a SYN_REPORT after each report.\n"
+	"record: a real evdev device (/dev/input/eventN) into an evemu 1.3 file as evemu-record\n"
+	"  writes one: its description, then its events with times rebased to the first; stops\n"
+	"  after N events, S seconds, SIGINT or the device going away. --decode prints what the\n"
+	"  daemon's evdev backend makes of the events instead, as decode does for a file.\n"
+	"  --fd N reads struct input_event records from the inherited fd N (a pipe, socket or\n"
+	"  pty standing in for a device in tests) through the same backend, with no description.\n";
 
 enum format { FMT_EVEMU, FMT_HID, FMT_CANDUMP, FMT_UNKNOWN };
 
@@ -476,6 +491,206 @@ decode(int argc, char **argv)
 	return 1;
 }
 
+/* ---- record ------------------------------------------------------------------ */
+
+static volatile sig_atomic_t record_stop;
+
+static void
+record_on_signal(int sig)
+{
+	(void)sig;
+	record_stop = 1;
+}
+
+static uint64_t
+record_now_us(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
+}
+
+struct record_opts {
+	const char *path, *out;
+	int fd;               /* --fd: a test's stand-in for the device, or -1 */
+	unsigned long count;  /* 0: no limit */
+	double seconds;       /* 0: no limit */
+	int decode;
+};
+
+/* the options, or 2 with the usage */
+static int
+record_parse(int argc, char **argv, struct record_opts *dest)
+{
+	memset(dest, 0, sizeof *dest);
+	dest->fd = -1;
+	for (int i = 0; i < argc; i++) {
+		char *end;
+		if (!strcmp(argv[i], "-o") && i + 1 < argc) {
+			dest->out = argv[++i];
+		} else if (!strcmp(argv[i], "--count") && i + 1 < argc) {
+			dest->count = strtoul(argv[++i], &end, 10);
+			if (*end || !dest->count)
+				goto usage;
+		} else if (!strcmp(argv[i], "--seconds") && i + 1 < argc) {
+			dest->seconds = strtod(argv[++i], &end);
+			if (*end || !(dest->seconds > 0))
+				goto usage;
+		} else if (!strcmp(argv[i], "--fd") && i + 1 < argc && !dest->path) {
+			long fd = strtol(argv[++i], &end, 10);
+			if (*end || fd < 0 || fd > 1 << 20)
+				goto usage;
+			dest->fd = (int)fd;
+			dest->path = "fd";
+		} else if (!strcmp(argv[i], "--decode")) {
+			dest->decode = 1;
+		} else if (!strncmp(argv[i], "evdev:", 6) && argv[i][6] && !dest->path) {
+			dest->path = argv[i] + 6;
+		} else {
+			goto usage;
+		}
+	}
+	if (dest->path)
+		return 0;
+usage:
+	fputs(usage, stderr);
+	return 2;
+}
+
+/* one record of the last read: an E: line rebased to the first event, or nothing */
+static int
+record_write(FILE *out, const uint8_t *bytes, uint64_t *t0, int *first, uint64_t *last_ms)
+{
+	struct input_event rec;
+	memcpy(&rec, bytes, sizeof rec);
+	uint64_t t = (uint64_t)rec.input_event_sec * 1000000u + (uint64_t)rec.input_event_usec;
+	if (*first) {
+		*t0 = t;
+		*first = 0;
+	}
+	/* evemu-record puts the first event at 0.000001 */
+	uint64_t rel = (t >= *t0 ? t - *t0 : 0) + 1;
+	struct rec_evemu_event ev = {
+		.t_us = rel,
+		.sec = rel / 1000000u,
+		.usec = (uint32_t)(rel % 1000000u),
+		.type = rec.type,
+		.code = rec.code,
+		.value = rec.value,
+	};
+	return rec_evemu_write_event(out, &ev, last_ms);
+}
+
+/* the queue's events, times from the first record (decode's times for a file) */
+static void
+record_drain(struct input_queue *q, uint64_t t0, int print)
+{
+	struct input_event_rec e;
+	while (input_queue_pop(q, &e)) {
+		if (!print)
+			continue;
+		e.t_us = e.t_us >= t0 ? e.t_us - t0 : 0;
+		print_event(&e, NULL);
+	}
+}
+
+static int
+record(int argc, char **argv)
+{
+	struct record_opts o;
+	if (record_parse(argc, argv, &o))
+		return 2;
+
+	char err[512];
+	static struct evdev_dev d;
+	int opened = o.fd >= 0 ? evdev_dev_adopt(&d, o.fd, 0, "fd", err, sizeof err)
+			       : evdev_dev_open(&d, o.path, 0, 0, err, sizeof err);
+	if (opened < 0) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return 1;
+	}
+	FILE *out = stdout;
+	if (o.out && !(out = fopen(o.out, "w"))) {
+		fprintf(stderr, "posture-input: %s: %s\n", o.out, strerror(errno));
+		evdev_dev_close(&d, 0, NULL);
+		return 1;
+	}
+
+	/* the description first, as evemu-record writes it */
+	static struct rec_evemu desc;
+	if (!o.decode) {
+		evdev_dev_describe(&d, &desc);
+		rec_evemu_write(out, &desc);
+		fflush(out);
+	}
+
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = record_on_signal;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+
+	static struct input_queue q;
+	input_queue_init(&q);
+	uint64_t start = record_now_us(), t0 = 0, last_ms = 0;
+	uint64_t limit = o.seconds > 0 ? (uint64_t)(o.seconds * 1e6) : 0;
+	unsigned long written = 0;
+	int first = 1, rc = 0;
+	while (!record_stop && (!o.count || written < o.count)) {
+		uint64_t now = record_now_us();
+		if (limit && now - start >= limit)
+			break;
+		int wait_ms = 200;
+		if (limit && (limit - (now - start)) / 1000 < (uint64_t)wait_ms)
+			wait_ms = (int)((limit - (now - start)) / 1000) + 1;
+		struct pollfd p = { .fd = evdev_dev_fd(&d), .events = POLLIN };
+		if (poll(&p, 1, wait_ms) < 0) {
+			if (errno == EINTR)
+				continue;
+			fprintf(stderr, "posture-input: poll: %s\n", strerror(errno));
+			rc = 1;
+			break;
+		}
+		int n = evdev_dev_read(&d, record_now_us(), &q);
+		for (int i = 0; i < n && (!o.count || written < o.count); i++, written++) {
+			const uint8_t *bytes = d.buf + (size_t)i * sizeof(struct input_event);
+			if (o.decode) {
+				if (first) {
+					struct input_event rec;
+					memcpy(&rec, bytes, sizeof rec);
+					t0 = (uint64_t)rec.input_event_sec * 1000000u +
+					     (uint64_t)rec.input_event_usec;
+					first = 0;
+				}
+			} else if (record_write(out, bytes, &t0, &first, &last_ms) < 0) {
+				rc = 1;
+			}
+		}
+		record_drain(&q, t0, o.decode);
+		fflush(out);
+		if (n < 0) {
+			fprintf(stderr, "posture-input: %s: the device went away\n", o.path);
+			rc = 1;
+			break;
+		}
+	}
+
+	fprintf(stderr, "posture-input: %lu records in %llu reads (%llu stopped at the %d-record cap)\n",
+		written, (unsigned long long)d.reads, (unsigned long long)d.capped,
+		EVDEV_DEV_READ_MAX);
+
+	/* what is still held is released, as the daemon does */
+	evdev_dev_close(&d, record_now_us(), &q);
+	record_drain(&q, t0, o.decode);
+	if (ferror(out))
+		rc = 1;
+	if (out != stdout)
+		fclose(out);
+	else
+		fflush(out);
+	return rc;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -483,6 +698,8 @@ main(int argc, char **argv)
 		return describe(argv[2]);
 	if (argc >= 3 && !strcmp(argv[1], "decode"))
 		return decode(argc - 2, argv + 2);
+	if (argc >= 3 && !strcmp(argv[1], "record"))
+		return record(argc - 2, argv + 2);
 	if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
 		fputs(usage, stdout);
 		return 0;

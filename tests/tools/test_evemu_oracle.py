@@ -116,7 +116,8 @@ def tools(tmp_path_factory):
     ours = sorted(str(p) for p in (ROOT / "devices").glob("*.c"))  # the whole layer
     return {
         "evemu": build(tmp, "evemu_tool", EVEMU_TOOL, "-levemu"),
-        "ours": build(tmp, "our_tool", OUR_TOOL, *ours, "-lm"),
+        "ours": build(tmp, "our_tool", OUR_TOOL, *ours, "-I/usr/include/libevdev-1.0",
+                      "-levdev", "-lm"),
         "libevdev": build(tmp, "libevdev_names", LIBEVDEV_NAMES, "-I/usr/include/libevdev-1.0",
                           "-levdev"),
         "tmp": tmp,
