@@ -164,3 +164,48 @@ cmd_input_valuator(struct cmd_ctx *c)
 	e.x = v;
 	return inject(c, &e);
 }
+
+static const char *
+class_name(enum input_class c)
+{
+	switch (c) {
+	case INPUT_CLASS_MOUSE:
+		return "mouse";
+	case INPUT_CLASS_KEYBOARD:
+		return "keyboard";
+	case INPUT_CLASS_PANEL:
+		return "panel";
+	case INPUT_CLASS_OTHER:
+		return "other";
+	}
+	return "other";
+}
+
+int
+cmd_list_devices(struct cmd_ctx *c)
+{
+	json_t *open = json_array(), *skip = json_array();
+	const struct input_devs *s = c->d->devices;
+	for (int i = 0; s && i < INPUT_DEVS_MAX; i++) {
+		const struct evdev_dev *d = &s->dev[i];
+		if (d->fd < 0)
+			continue;
+		json_t *o = json_object();
+		json_object_set_new(o, "device", json_integer(i));
+		json_object_set_new(o, "backend", json_string("evdev"));
+		json_object_set_new(o, "path", json_string(d->path));
+		json_object_set_new(o, "name", json_string(d->info.name));
+		json_object_set_new(o, "class", json_string(class_name(d->info.cls)));
+		json_object_set_new(o, "grabbed", json_boolean(d->grabbed));
+		json_array_append_new(open, o);
+	}
+	for (int k = 0; s && k < s->nskip; k++) {
+		json_t *o = json_object();
+		json_object_set_new(o, "what", json_string(s->skip[k].what));
+		json_object_set_new(o, "why", json_string(s->skip[k].why));
+		json_array_append_new(skip, o);
+	}
+	json_object_set_new(c->result, "devices", open);
+	json_object_set_new(c->result, "skipped", skip);
+	return 0;
+}

@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "devices/can_map.h"
+#include "devices/input_devs.h"
 #include "devices/queue.h"
 #include "draw/frame.h"
 #include "pose/env.h"
@@ -65,6 +66,8 @@ struct daemon {
 	uint64_t (*now_us)(void); /* the loop's clock for injected events; NULL: 0 */
 	/* the dial panel's map: its valuators' names; NULL: no panel */
 	const struct can_map *panel;
+	/* the devices read directly (list devices); NULL: none */
+	const struct input_devs *devices;
 };
 
 /* frees the undo and redo texts */

@@ -15,6 +15,7 @@
 #include "daemon/events.h"
 #include "daemon/notify.h"
 #include "daemon/scene.h"
+#include "devices/input_devs.h"
 #include "pose/attach.h"
 
 struct loop {
@@ -30,6 +31,7 @@ struct loop {
 	struct events events; /* what the clients subscribed to */
 	struct input_queue input; /* from the devices and the socket's input lines */
 	struct can_map panel;     /* the dial panel's map, when one is given */
+	struct input_devs devs;   /* the mice, keyboards and panels read directly */
 	struct scene scene;   /* the views' pictures */
 	int stop;
 };
@@ -318,6 +320,34 @@ live_frame(struct loop *L)
 	}
 }
 
+/* the --input specs (auto when none): each device opened announced, the rest logged */
+static int
+open_devices(struct loop *L, const struct loop_config *cfg, char *err, size_t errlen)
+{
+	static const char *const fallback[] = { "auto" };
+	const char *const *spec = cfg->ninputs ? cfg->inputs : fallback;
+	int nspec = cfg->ninputs ? cfg->ninputs : 1;
+	input_devs_init(&L->devs, 0);
+	L->d.devices = &L->devs;
+	for (int k = 0; k < nspec; k++)
+		if (input_devs_open(&L->devs, spec[k], err, errlen) < 0)
+			return -1;
+	uint64_t now = real_now(NULL);
+	for (int i = 0; i < INPUT_DEVS_MAX; i++) {
+		const struct evdev_dev *d = &L->devs.dev[i];
+		if (d->fd < 0)
+			continue;
+		fprintf(stderr, "postured: input %d: %s (%s, evdev)\n", i, d->path, d->info.name);
+		struct input_event_rec e = { .t_us = now, .device = (uint16_t)i, .kind = INPUT_ADDED,
+					     .code = (uint16_t)d->info.cls };
+		input_queue_push(&L->input, &e);
+	}
+	for (int k = 0; k < L->devs.nskip; k++)
+		fprintf(stderr, "postured: input %s skipped: %s\n", L->devs.skip[k].what,
+			L->devs.skip[k].why);
+	return 0;
+}
+
 int
 loop_run(const struct loop_config *cfg)
 {
@@ -348,6 +378,10 @@ loop_run(const struct loop_config *cfg)
 		}
 		L->d.panel = &L->panel;
 	}
+	if (open_devices(L, cfg, err, sizeof err) < 0) {
+		fprintf(stderr, "postured: %s\n", err);
+		goto out;
+	}
 	if (cfg->fb_device && !(L->scene.fb = sink_fb_open(cfg->fb_device, err, sizeof err))) {
 		fprintf(stderr, "postured: framebuffer %s: %s\n", cfg->fb_device, err);
 		goto out;
@@ -374,13 +408,18 @@ loop_run(const struct loop_config *cfg)
 	notify_send("READY=1");
 	fprintf(stderr, "postured: listening on %s%s\n", cfg->socket_path,
 		cfg->tcp_port > 0 ? " and 127.0.0.1 (token required)" : "");
-	static struct pollfd fds[SERVER_MAX_CLIENTS + 3];
-	static int owner[SERVER_MAX_CLIENTS + 3];
+	static struct pollfd fds[SERVER_MAX_CLIENTS + 3 + INPUT_DEVS_MAX];
+	static int owner[SERVER_MAX_CLIENTS + 3 + INPUT_DEVS_MAX];
 	uint64_t next = real_now(NULL) + L->period_us;
 	while (!L->stop) {
 		int n = server_pollfds(&L->srv, fds, owner);
 		fds[n] = (struct pollfd){ .fd = L->sig_fd, .events = POLLIN };
 		owner[n++] = -3;
+		for (int i = 0; i < INPUT_DEVS_MAX; i++) /* the devices: owner -100 - place */
+			if (input_devs_fd(&L->devs, i) >= 0) {
+				fds[n] = (struct pollfd){ .fd = input_devs_fd(&L->devs, i), .events = POLLIN };
+				owner[n++] = -100 - i;
+			}
 		uint64_t now = real_now(NULL);
 		int timeout = now >= next ? 0 : (int)((next - now + 999) / 1000);
 		if (poll(fds, (nfds_t)n, timeout) < 0 && errno != EINTR) {
@@ -390,7 +429,9 @@ loop_run(const struct loop_config *cfg)
 		for (int k = 0; k < n; k++) {
 			if (!fds[k].revents)
 				continue;
-			if (owner[k] == -3)
+			if (owner[k] <= -100)
+				input_devs_read(&L->devs, -100 - owner[k], real_now(NULL), &L->input);
+			else if (owner[k] == -3)
 				L->stop = 1;
 			else if (owner[k] < 0)
 				server_accept(&L->srv, fds[k].fd);
@@ -431,6 +472,7 @@ out:
 	env_clear(&L->d.env);
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
+	input_devs_close_all(&L->devs, real_now(NULL), &L->input);
 	events_free(&L->events);
 	scene_free(&L->scene);
 	free(L);

@@ -21,6 +21,8 @@ struct loop_config {
 	const char *library_dir; /* shipped figure files, NULL: none */
 	const char *fb_device;   /* a framebuffer for the first view, NULL: none */
 	const char *panel_map;   /* the dial panel's map (devices/can_map.h), NULL: none */
+	const char *const *inputs; /* --input specs (devices/input_devs.h); none: auto */
+	int ninputs;
 };
 
 /* runs until SIGTERM or SIGINT; returns the process exit status */

@@ -28,6 +28,8 @@ static const char usage[] =
 	"  --token TOKEN      the token TCP clients must send first (auth TOKEN)\n"
 	"  --init FILE        commands to run when the state is empty (a first start)\n"
 	"  --library DIR      shipped figure files, loaded as 'load figure lib:NAME'\n"
+	"  --input SPEC       the devices to read (repeatable): auto (the default: every\n"
+	"                     mouse and keyboard in /dev/input), evdev:PATH, or none\n"
 	"  --panel FILE       the dial panel's map: its axes and buttons by name (see\n"
 	"                     devices/can_map.h; tools/dbc2panel makes one from a DBC file)\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
@@ -40,6 +42,9 @@ static const char usage[] =
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
 	char fb[PATH_MAX], panel[PATH_MAX], token[128];
+	char input[INPUT_DEVS_MAX][INPUT_DEVS_SPEC_MAX];
+	const char *inputs[INPUT_DEVS_MAX];
+	int ninputs;
 	double fps;
 	int tcp;
 };
@@ -58,7 +63,16 @@ set(struct settings *s, const char *key, const char *val)
 		snprintf(s->fb, sizeof s->fb, "%s", val);
 	else if (!strcmp(key, "library"))
 		snprintf(s->library, sizeof s->library, "%s", val);
-	else if (!strcmp(key, "panel"))
+	else if (!strcmp(key, "input")) {
+		if (s->ninputs == INPUT_DEVS_MAX || strlen(val) >= INPUT_DEVS_SPEC_MAX) {
+			fprintf(stderr, "postured: at most %d inputs of %d bytes\n", INPUT_DEVS_MAX,
+				INPUT_DEVS_SPEC_MAX - 1);
+			return -1;
+		}
+		snprintf(s->input[s->ninputs], sizeof s->input[0], "%s", val);
+		s->inputs[s->ninputs] = s->input[s->ninputs];
+		s->ninputs++;
+	} else if (!strcmp(key, "panel"))
 		snprintf(s->panel, sizeof s->panel, "%s", val);
 	else if (!strcmp(key, "init"))
 		snprintf(s->init, sizeof s->init, "%s", val);
@@ -197,6 +211,6 @@ main(int argc, char **argv)
 	struct loop_config cfg = { s.socket, s.state_dir, s.frames[0] ? s.frames : NULL, s.fps,
 				   s.tcp, s.token, s.init[0] ? s.init : NULL,
 				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL,
-				   s.panel[0] ? s.panel : NULL };
+				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs };
 	return loop_run(&cfg);
 }

@@ -68,6 +68,8 @@ class Daemon:
             self.argv += ["--tcp", str(self.tcp_port), "--token", self.token]
         if frames is not None:
             self.argv += ["--frames", str(frames)]
+        if "--input" not in extra:  # the machine's own mice and keyboards stay out of tests
+            self.argv += ["--input", "none"]
         self.argv += list(extra)
         self.proc = None
         self.starts = 0
