@@ -161,7 +161,7 @@ define fuzz_run
 		if ! $$f -runs=$(1) -max_len=65536 -print_final_stats=1 $$w tests/fuzz/corpus/$$n \
 			> $$w.log 2>&1; then tail -40 $$w.log; echo "fuzz: $$n failed (log $$w.log)"; \
 			exit 1; fi; \
-		echo "fuzz: $$n $$(grep -o 'number_of_executed_units: *[0-9]*' $$w.log | grep -o '[0-9]*$$') executions, no crash"; \
+		echo "fuzz: $$n $$(grep -ao 'number_of_executed_units: *[0-9]*' $$w.log | grep -o '[0-9]*$$') executions, no crash"; \
 	done
 endef
 
