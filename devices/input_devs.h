@@ -52,7 +52,7 @@ int input_devs_fd(const struct input_devs *s, int i);
  */
 int input_devs_read(struct input_devs *s, int i, uint64_t now_us, struct input_queue *q);
 
-/* closes every device, releasing what each held */
+/* closes every device, releasing what each held into q (NULL: nothing queued) */
 void input_devs_close_all(struct input_devs *s, uint64_t now_us, struct input_queue *q);
 
 #endif

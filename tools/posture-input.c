@@ -32,6 +32,7 @@
 #include "devices/hid_desc.h"
 #include "devices/hid_input.h"
 #include "devices/hid_keymap.h"
+#include "devices/input_devs.h"
 #include "devices/queue.h"
 #include "devices/rec_candump.h"
 #include "devices/rec_evemu.h"
@@ -44,6 +45,7 @@ static const char usage[] =
 	"       posture-input decode --evemu FILE.hid\n"
 	"       posture-input record evdev:PATH [-o FILE] [--count N] [--seconds S] [--decode]\n"
 	"       posture-input record --fd N [...]   (tests: records from an inherited fd)\n"
+	"       posture-input list [SPEC...]\n"
 	"\n"
 	"describe: a HID report descriptor's input reports, fields, usages and bit offsets;\n"
 	"  FILE is a hid-recorder file (every device in it) or a raw descriptor (the bytes of\n"
@@ -59,7 +61,9 @@ static const char usage[] =
 	"  after N events, S seconds, SIGINT or the device going away. --decode prints what the\n"
 	"  daemon's evdev backend makes of the events instead, as decode does for a file.\n"
 	"  --fd N reads struct input_event records from the inherited fd N (a pipe, socket or\n"
-	"  pty standing in for a device in tests) through the same backend, with no description.\n";
+	"  pty standing in for a device in tests) through the same backend, with no description.\n"
+	"list: the devices the daemon would open for the --input SPECs (default auto) and\n"
+	"  what it would skip and why, without a daemon: index, backend, path, class, name.\n";
 
 enum format { FMT_EVEMU, FMT_HID, FMT_CANDUMP, FMT_UNKNOWN };
 
@@ -691,6 +695,33 @@ record(int argc, char **argv)
 	return rc;
 }
 
+/* ---- list -------------------------------------------------------------------- */
+
+static int
+list(int argc, char **argv)
+{
+	static struct input_devs s;
+	char err[512];
+	input_devs_init(&s, 0);
+	for (int k = 0; k < (argc ? argc : 1); k++)
+		if (input_devs_open(&s, argc ? argv[k] : "auto", err, sizeof err) < 0) {
+			fprintf(stderr, "posture-input: %s\n", err);
+			return 2;
+		}
+	static const char *const cls[] = { "mouse", "keyboard", "panel", "other" };
+	for (int i = 0; i < INPUT_DEVS_MAX; i++) {
+		const struct evdev_dev *d = &s.dev[i];
+		if (d->fd >= 0)
+			printf("%d evdev %s %s %s\n", i, d->path,
+			       cls[d->info.cls <= INPUT_CLASS_OTHER ? d->info.cls : INPUT_CLASS_OTHER],
+			       d->info.name);
+	}
+	for (int k = 0; k < s.nskip; k++)
+		printf("skipped %s: %s\n", s.skip[k].what, s.skip[k].why);
+	input_devs_close_all(&s, 0, NULL);
+	return 0;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -700,6 +731,8 @@ main(int argc, char **argv)
 		return decode(argc - 2, argv + 2);
 	if (argc >= 3 && !strcmp(argv[1], "record"))
 		return record(argc - 2, argv + 2);
+	if (argc >= 2 && !strcmp(argv[1], "list"))
+		return list(argc - 2, argv + 2);
 	if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
 		fputs(usage, stdout);
 		return 0;
