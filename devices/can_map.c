@@ -4,7 +4,6 @@
 #include <errno.h>
 #include <linux/input-event-codes.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -443,13 +442,9 @@ index_build(struct can_map *m)
 	}
 }
 
-static int
-fail(char *err, size_t errlen, const char *name, int lineno, const char *msg)
-{
-	if (err && errlen)
-		snprintf(err, errlen, "%s:%d: %s", name, lineno, msg);
-	return -1;
-}
+/* a refusal: "name:line: msg" */
+#define fail(err, errlen, name, lineno, msg) \
+	textfile_fail((err), (errlen), (name), (unsigned)(lineno), "%s", (msg))
 
 int
 can_map_parse(const char *text, size_t n, const char *name, struct can_map *dest, char *err,

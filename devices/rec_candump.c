@@ -172,13 +172,9 @@ line_parse(const char *s, size_t n, struct rec_candump_frame *f, int *digits_des
 	return NULL;
 }
 
-static int
-fail(char *err, size_t errlen, const char *name, size_t lineno, const char *msg)
-{
-	if (err && errlen)
-		snprintf(err, errlen, "%s:%zu: %s", name, lineno, msg);
-	return -1;
-}
+/* a refusal: "name:line: msg" */
+#define fail(err, errlen, name, lineno, msg) \
+	textfile_fail((err), (errlen), (name), (unsigned)(lineno), "%s", (msg))
 
 int
 rec_candump_parse(const char *text, size_t n, const char *name, struct rec_candump *dest,

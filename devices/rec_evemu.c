@@ -2,7 +2,6 @@
 #include "devices/rec_evemu.h"
 
 #include <inttypes.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -70,23 +69,8 @@ struct parser {
 	size_t cap;                     /* of dest->ev */
 };
 
-static int
-fail(struct parser *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-
-static int
-fail(struct parser *p, const char *fmt, ...)
-{
-	if (!p->errlen)
-		return -1;
-	int k = snprintf(p->err, p->errlen, "%s:%u: ", p->name, p->line);
-	if (k >= 0 && (size_t)k < p->errlen) {
-		va_list ap;
-		va_start(ap, fmt);
-		vsnprintf(p->err + k, p->errlen - (size_t)k, fmt, ap);
-		va_end(ap);
-	}
-	return -1;
-}
+/* the parser's refusal at its current line */
+#define fail(p, ...) textfile_fail((p)->err, (p)->errlen, (p)->name, (p)->line, __VA_ARGS__)
 
 /* a line's cursor: s moves towards end */
 struct cursor {

@@ -2,7 +2,6 @@
 #include "devices/rec_hid.h"
 
 #include <inttypes.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,23 +20,8 @@ struct reader {
 	uint64_t first_t, last_t;
 };
 
-static int
-fail(struct reader *rd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-
-static int
-fail(struct reader *rd, const char *fmt, ...)
-{
-	if (rd->errlen == 0)
-		return -1;
-	int k = snprintf(rd->err, rd->errlen, "%s:%u: ", rd->name, rd->line);
-	if (k < 0 || (size_t)k >= rd->errlen)
-		return -1;
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(rd->err + k, rd->errlen - (size_t)k, fmt, ap);
-	va_end(ap);
-	return -1;
-}
+/* the reader's refusal at its current line */
+#define fail(rd, ...) textfile_fail((rd)->err, (rd)->errlen, (rd)->name, (rd)->line, __VA_ARGS__)
 
 /* a cursor over one line */
 struct cur {

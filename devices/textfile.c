@@ -2,6 +2,7 @@
 #include "devices/textfile.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,4 +48,19 @@ textfile_read(const char *path, size_t *n, char *err, size_t errlen)
 	buf[len] = 0;
 	*n = len;
 	return buf;
+}
+
+int
+textfile_fail(char *err, size_t errlen, const char *name, unsigned line, const char *fmt, ...)
+{
+	if (!err || !errlen)
+		return -1;
+	int k = snprintf(err, errlen, "%s:%u: ", name, line);
+	if (k < 0 || (size_t)k >= errlen)
+		return -1;
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(err + k, errlen - (size_t)k, fmt, ap);
+	va_end(ap);
+	return -1;
 }
