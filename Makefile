@@ -9,8 +9,8 @@ SHELL   := /bin/bash
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -MMD -MP
-LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -lm
+BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -I/usr/include/libusb-1.0 -MMD -MP
+LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -ludev -lhidapi-hidraw -lusb-1.0 -lm
 TESTLIBS := -lcmocka -lnlopt
 # NLopt is the independent minimiser the IK tests and benchmarks compare against;
 # only tests and benchmarks link it
@@ -23,7 +23,7 @@ VENV    := .venv
 PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
-	libevdev-dev clang evemu-tools libevemu-dev umockdev
+	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils
 # without their recommends: QEMU boots the kernel test tier's guest (tests/guest)
 DEB_PKGS_LEAN := qemu-system-x86
 
@@ -34,6 +34,8 @@ LIB_SRC   := $(filter-out $(MAIN_SRC),$(foreach l,$(LAYERS),$(wildcard src/$(l)/
 TOOL_SRC  := $(wildcard tools/*.c)
 TEST_SRC  := $(wildcard tests/test_*.c)
 BENCH_SRC := $(wildcard tools/bench/*.c)
+# programs the kernel test tier runs inside its QEMU guest (tests/guest)
+GUEST_SRC := $(wildcard tests/guest/guest_*.c)
 
 # two builds of everything: rel (optimised) and san (ASan + UBSan)
 define variant
@@ -44,6 +46,7 @@ $(1)_LIB := $(BUILD)/$(1)/libposture.a
 $(1)_TOOLS := $$(patsubst tools/%.c,$(BUILD)/$(1)/bin/%,$$(TOOL_SRC)) $(BUILD)/$(1)/bin/postured
 $(1)_TESTS := $$(patsubst tests/%.c,$(BUILD)/$(1)/tests/%,$$(TEST_SRC))
 $(1)_BENCH := $$(patsubst tools/bench/%.c,$(BUILD)/$(1)/bench/%,$$(BENCH_SRC))
+$(1)_GUEST := $$(patsubst tests/guest/%.c,$(BUILD)/$(1)/guest/%,$$(GUEST_SRC))
 
 $(BUILD)/$(1)/%.o: %.c | $(BUILD)/.deps-apt
 	@mkdir -p $$(dir $$@)
@@ -69,7 +72,11 @@ $(BUILD)/$(1)/bench/%: $(BUILD)/$(1)/tools/bench/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(BENCHLIBS) $(LIBS) -o $$@
 
--include $$(patsubst %.c,$(BUILD)/$(1)/%.d,$$(LIB_SRC) $(MAIN_SRC) $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC))
+$(BUILD)/$(1)/guest/%: $(BUILD)/$(1)/tests/guest/%.o $$($(1)_LIB)
+	@mkdir -p $$(dir $$@)
+	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
+
+-include $$(patsubst %.c,$(BUILD)/$(1)/%.d,$$(LIB_SRC) $(MAIN_SRC) $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC) $$(GUEST_SRC))
 endef
 
 $(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,))
@@ -78,7 +85,7 @@ $(eval $(call variant,san,-O1 -g $(SAN),$(SAN)))
 .PHONY: all run test layer-check unit-test system-test fuzz fuzz-smoke bench deps check clean
 .SECONDARY:
 
-all: $(rel_LIB) $(rel_TOOLS) $(rel_TESTS) $(rel_BENCH)
+all: $(rel_LIB) $(rel_TOOLS) $(rel_TESTS) $(rel_BENCH) $(rel_GUEST)
 
 # ---- dependencies --------------------------------------------------------
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
@@ -125,7 +132,7 @@ unit-test: $(rel_TESTS) $(san_TESTS) $(rel_TOOLS)
 			LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $$t; \
 	done
 
-system-test: $(rel_TOOLS) | deps
+system-test: $(rel_TOOLS) $(rel_GUEST) | deps
 	POSTURE_BUILD=$(BUILD)/rel $(PY) -m pytest -q -rs tests/system tests/tools tests/guest
 
 check: layer-check unit-test

@@ -1,14 +1,18 @@
 /* evdev_dev.c - the evdev backend: open, fd, read into the decoder, close (see evdev_dev.h) */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <libevdev/libevdev.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/ioctl.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "devices/evdev_dev.h"
+#include "devices/input_devs.h"
+#include "devices/mouse_dpi.h"
 
 static const size_t record_size = sizeof(struct input_event);
 
@@ -303,3 +307,110 @@ evdev_dev_describe(const struct evdev_dev *d, struct rec_evemu *dest)
 		if (libevdev_has_event_code(ev, EV_SW, c))
 			dest->sw[c] = libevdev_get_event_value(ev, EV_SW, c);
 }
+
+/* ---- the backend for the device set (devices/input_backend.h) ---- */
+
+static int
+evdev_backend_fd(const void *dev)
+{
+	return evdev_dev_fd(dev);
+}
+
+static int
+evdev_backend_read(void *dev, uint64_t now_us, struct input_queue *q)
+{
+	return evdev_dev_read(dev, now_us, q) < 0 ? -1 : 0;
+}
+
+static void
+evdev_backend_close(void *dev, uint64_t now_us, struct input_queue *q)
+{
+	evdev_dev_close(dev, now_us, q);
+	free(dev);
+}
+
+static int
+evdev_backend_set_grab(void *dev, int on)
+{
+	return evdev_dev_set_grab(dev, on);
+}
+
+/* 1 when opened, 0 when skipped (with its reason) */
+static int
+evdev_backend_open_path(struct input_devs *s, const char *path, int only_pointing_and_keys)
+{
+	char err[256];
+	if (input_devs_find(s, &input_backend_evdev, path) >= 0)
+		return 0;
+	int i = input_devs_free_place(s, path);
+	if (i < 0)
+		return 0;
+	struct evdev_dev *d = malloc(sizeof *d);
+	if (!d) {
+		input_devs_skip(s, path, "out of memory");
+		return 0;
+	}
+	if (evdev_dev_open(d, path, (uint16_t)i, s->grab, err, sizeof err) < 0) {
+		input_devs_skip(s, path, err);
+		free(d);
+		return 0;
+	}
+	if (only_pointing_and_keys && d->info.cls == INPUT_CLASS_OTHER) {
+		evdev_backend_close(d, 0, NULL);
+		input_devs_skip(s, path, "neither a mouse nor a keyboard");
+		return 0;
+	}
+	struct input_dev_info info = { .vendor = d->info.vendor, .product = d->info.product,
+				       .iface = -1, .cls = d->info.cls, .grabbed = d->grabbed,
+				       .dpi = mouse_dpi_of_node(path) };
+	snprintf(info.path, sizeof info.path, "%s", path);
+	snprintf(info.name, sizeof info.name, "%s", d->info.name);
+	input_devs_put(s, i, &input_backend_evdev, d, &info);
+	return 1;
+}
+
+/* every mouse and keyboard among the event nodes, in name order */
+static int
+evdev_backend_open_auto(struct input_devs *s)
+{
+	DIR *dir = opendir(s->input_dir);
+	if (!dir) {
+		input_devs_skip(s, "auto", "no input devices (the input directory cannot be read)");
+		return 0;
+	}
+	char names[64][32];
+	int n = 0;
+	struct dirent *e;
+	while ((e = readdir(dir)) && n < 64)
+		if (!strncmp(e->d_name, "event", 5) && strlen(e->d_name) < sizeof names[0])
+			snprintf(names[n++], sizeof names[0], "%.31s", e->d_name);
+	closedir(dir);
+	qsort(names, (size_t)n, sizeof names[0], (int (*)(const void *, const void *))strcmp);
+	int opened = 0;
+	for (int k = 0; k < n; k++) {
+		char path[512];
+		snprintf(path, sizeof path, "%.400s/%.31s", s->input_dir, names[k]);
+		opened += evdev_backend_open_path(s, path, 1);
+	}
+	if (!n)
+		input_devs_skip(s, "auto", "no input devices");
+	return opened;
+}
+
+static int
+evdev_backend_open_spec(struct input_devs *s, const char *arg, char *err, size_t errlen)
+{
+	(void)err;
+	(void)errlen;
+	return arg ? evdev_backend_open_path(s, arg, 0) : evdev_backend_open_auto(s);
+}
+
+const struct input_backend input_backend_evdev = {
+	.name = "evdev",
+	.usage = "evdev:PATH",
+	.open_spec = evdev_backend_open_spec,
+	.fd = evdev_backend_fd,
+	.read = evdev_backend_read,
+	.close = evdev_backend_close,
+	.set_grab = evdev_backend_set_grab,
+};

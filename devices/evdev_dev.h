@@ -26,6 +26,7 @@
 
 #include "devices/event.h"
 #include "devices/evdev_input.h"
+#include "devices/input_backend.h"
 #include "devices/queue.h"
 #include "devices/rec_evemu.h"
 
@@ -151,5 +152,8 @@ evdev_dev_adopt(struct evdev_dev *d, int fd, uint16_t device, const char *who, c
  */
 int
 evdev_dev_probe(const char *path, struct evdev_dev_info *dest, char *err, size_t errlen);
+
+/* the backend for the device set: `auto` and evdev:PATH (devices/input_backend.h) */
+extern const struct input_backend input_backend_evdev;
 
 #endif

@@ -32,6 +32,7 @@
 #include "devices/hid_desc.h"
 #include "devices/hid_input.h"
 #include "devices/hid_keymap.h"
+#include "devices/input_backends.h"
 #include "devices/input_devs.h"
 #include "devices/queue.h"
 #include "devices/rec_candump.h"
@@ -702,19 +703,19 @@ list(int argc, char **argv)
 {
 	static struct input_devs s;
 	char err[512];
-	input_devs_init(&s, 0);
+	input_devs_init(&s, input_backends, input_backends_count, 0, NULL);
 	for (int k = 0; k < (argc ? argc : 1); k++)
-		if (input_devs_open(&s, argc ? argv[k] : "auto", err, sizeof err) < 0) {
+		if (input_devs_open(&s, argc ? argv[k] : "auto", 0, err, sizeof err) < 0) {
 			fprintf(stderr, "posture-input: %s\n", err);
 			return 2;
 		}
 	static const char *const cls[] = { "mouse", "keyboard", "panel", "other" };
 	for (int i = 0; i < INPUT_DEVS_MAX; i++) {
-		const struct evdev_dev *d = &s.dev[i];
-		if (d->fd >= 0)
-			printf("%d evdev %s %s %s\n", i, d->path,
-			       cls[d->info.cls <= INPUT_CLASS_OTHER ? d->info.cls : INPUT_CLASS_OTHER],
-			       d->info.name);
+		const struct input_devs_place *p = &s.place[i];
+		if (p->be)
+			printf("%d %s %s %s %s\n", i, p->be->name, p->info.path,
+			       cls[p->info.cls <= INPUT_CLASS_OTHER ? p->info.cls : INPUT_CLASS_OTHER],
+			       p->info.name);
 	}
 	for (int k = 0; k < s.nskip; k++)
 		printf("skipped %s: %s\n", s.skip[k].what, s.skip[k].why);

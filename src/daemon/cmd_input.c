@@ -187,16 +187,23 @@ cmd_list_devices(struct cmd_ctx *c)
 	json_t *open = json_array(), *skip = json_array();
 	const struct input_devs *s = c->d->devices;
 	for (int i = 0; s && i < INPUT_DEVS_MAX; i++) {
-		const struct evdev_dev *d = &s->dev[i];
-		if (d->fd < 0)
+		const struct input_devs_place *p = &s->place[i];
+		if (!p->be)
 			continue;
 		json_t *o = json_object();
 		json_object_set_new(o, "device", json_integer(i));
-		json_object_set_new(o, "backend", json_string("evdev"));
-		json_object_set_new(o, "path", json_string(d->path));
-		json_object_set_new(o, "name", json_string(d->info.name));
-		json_object_set_new(o, "class", json_string(class_name(d->info.cls)));
-		json_object_set_new(o, "grabbed", json_boolean(d->grabbed));
+		json_object_set_new(o, "backend", json_string(p->be->name));
+		json_object_set_new(o, "path", json_string(p->info.path));
+		json_object_set_new(o, "name", json_string(p->info.name));
+		json_object_set_new(o, "class", json_string(class_name(p->info.cls)));
+		char id[16];
+		snprintf(id, sizeof id, "%04x:%04x", p->info.vendor, p->info.product);
+		json_object_set_new(o, "id", json_string(id));
+		if (p->info.iface >= 0)
+			json_object_set_new(o, "interface", json_integer(p->info.iface));
+		if (p->info.cls == INPUT_CLASS_MOUSE)
+			json_object_set_new(o, "dpi", json_real(p->info.dpi));
+		json_object_set_new(o, "grabbed", json_boolean(p->info.grabbed));
 		json_array_append_new(open, o);
 	}
 	for (int k = 0; s && k < s->nskip; k++) {

@@ -238,7 +238,7 @@ code_name(struct jbuf *j, uint16_t code)
 }
 
 void
-events_input(struct events *E, const struct input_event_rec *e)
+events_input(struct events *E, const struct input_event_rec *e, long px, long py)
 {
 	if (!events_wanted(E, SUB_INPUT))
 		return;
@@ -258,6 +258,10 @@ events_input(struct events *E, const struct input_event_rec *e)
 		jbuf_num(j, e->x);
 		jbuf_key(j, "dy", 0);
 		jbuf_num(j, e->y);
+		jbuf_key(j, "px", 0);
+		jbuf_int(j, px);
+		jbuf_key(j, "py", 0);
+		jbuf_int(j, py);
 		break;
 	case INPUT_POINTER:
 		if (e->flags & INPUT_F_VIEW) {

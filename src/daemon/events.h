@@ -57,6 +57,10 @@ void events_telemetry(struct events *E, int fig, const struct ik_result *r, uint
  */
 void events_stability(struct events *E, int fig);
 /* one input event as the loop takes it from the queue (subscribe input) */
-void events_input(struct events *E, const struct input_event_rec *e);
+/*
+ * An input event to the clients that subscribed; px, py: a device's motion
+ * in screen pixels (devices/motion_scale.h), beside its raw counts.
+ */
+void events_input(struct events *E, const struct input_event_rec *e, long px, long py);
 
 #endif

@@ -15,7 +15,9 @@
 #include "daemon/events.h"
 #include "daemon/notify.h"
 #include "daemon/scene.h"
+#include "devices/input_backends.h"
 #include "devices/input_devs.h"
+#include "devices/motion_scale.h"
 #include "pose/attach.h"
 
 struct loop {
@@ -32,6 +34,9 @@ struct loop {
 	struct input_queue input; /* from the devices and the socket's input lines */
 	struct can_map panel;     /* the dial panel's map, when one is given */
 	struct input_devs devs;   /* the mice, keyboards and panels read directly */
+	/* each device's motion to pixels; the last: the socket's input lines */
+	struct motion_scale pointer[INPUT_DEVS_MAX + 1];
+	double pointer_gain;
 	struct scene scene;   /* the views' pictures */
 	int stop;
 };
@@ -64,8 +69,16 @@ static void
 take_input(struct loop *L)
 {
 	struct input_event_rec e;
-	while (input_queue_pop(&L->input, &e))
-		events_input(&L->events, &e);
+	while (input_queue_pop(&L->input, &e)) {
+		long px = 0, py = 0;
+		struct motion_scale *m = e.device < INPUT_DEVS_MAX ? &L->pointer[e.device]
+								   : &L->pointer[INPUT_DEVS_MAX];
+		if (e.kind == INPUT_ADDED && e.device < INPUT_DEVS_MAX)
+			motion_scale_init(m, L->devs.place[e.device].info.dpi, L->pointer_gain);
+		else if (e.kind == INPUT_MOTION)
+			motion_scale_apply(m, e.x, e.y, &px, &py);
+		events_input(&L->events, &e, px, py);
+	}
 }
 
 /* ---- frames ------------------------------------------------------------------ */
@@ -320,6 +333,17 @@ live_frame(struct loop *L)
 	}
 }
 
+/* the devices opened since the last call, announced */
+static void
+announce_devices(struct loop *L)
+{
+	for (int i; (i = input_devs_next_new(&L->devs)) >= 0;) {
+		const struct input_devs_place *p = &L->devs.place[i];
+		fprintf(stderr, "postured: input %d: %s (%s, %s)\n", i, p->info.path, p->info.name,
+			p->be->name);
+	}
+}
+
 /* the --input specs (auto when none): each device opened announced, the rest logged */
 static int
 open_devices(struct loop *L, const struct loop_config *cfg, char *err, size_t errlen)
@@ -327,21 +351,15 @@ open_devices(struct loop *L, const struct loop_config *cfg, char *err, size_t er
 	static const char *const fallback[] = { "auto" };
 	const char *const *spec = cfg->ninputs ? cfg->inputs : fallback;
 	int nspec = cfg->ninputs ? cfg->ninputs : 1;
-	input_devs_init(&L->devs, 0);
+	L->pointer_gain = cfg->pointer_gain > 0 ? cfg->pointer_gain : 1;
+	for (int i = 0; i <= INPUT_DEVS_MAX; i++)
+		motion_scale_init(&L->pointer[i], INPUT_DEV_DPI_DEFAULT, L->pointer_gain);
+	input_devs_init(&L->devs, input_backends, input_backends_count, cfg->grab, &L->input);
 	L->d.devices = &L->devs;
 	for (int k = 0; k < nspec; k++)
-		if (input_devs_open(&L->devs, spec[k], err, errlen) < 0)
+		if (input_devs_open(&L->devs, spec[k], real_now(NULL), err, errlen) < 0)
 			return -1;
-	uint64_t now = real_now(NULL);
-	for (int i = 0; i < INPUT_DEVS_MAX; i++) {
-		const struct evdev_dev *d = &L->devs.dev[i];
-		if (d->fd < 0)
-			continue;
-		fprintf(stderr, "postured: input %d: %s (%s, evdev)\n", i, d->path, d->info.name);
-		struct input_event_rec e = { .t_us = now, .device = (uint16_t)i, .kind = INPUT_ADDED,
-					     .code = (uint16_t)d->info.cls };
-		input_queue_push(&L->input, &e);
-	}
+	announce_devices(L);
 	for (int k = 0; k < L->devs.nskip; k++)
 		fprintf(stderr, "postured: input %s skipped: %s\n", L->devs.skip[k].what,
 			L->devs.skip[k].why);
@@ -408,18 +426,18 @@ loop_run(const struct loop_config *cfg)
 	notify_send("READY=1");
 	fprintf(stderr, "postured: listening on %s%s\n", cfg->socket_path,
 		cfg->tcp_port > 0 ? " and 127.0.0.1 (token required)" : "");
-	static struct pollfd fds[SERVER_MAX_CLIENTS + 3 + INPUT_DEVS_MAX];
-	static int owner[SERVER_MAX_CLIENTS + 3 + INPUT_DEVS_MAX];
+	static struct pollfd fds[SERVER_MAX_CLIENTS + 3 + INPUT_DEVS_POLL_MAX];
+	static int owner[SERVER_MAX_CLIENTS + 3 + INPUT_DEVS_POLL_MAX];
 	uint64_t next = real_now(NULL) + L->period_us;
 	while (!L->stop) {
 		int n = server_pollfds(&L->srv, fds, owner);
 		fds[n] = (struct pollfd){ .fd = L->sig_fd, .events = POLLIN };
 		owner[n++] = -3;
-		for (int i = 0; i < INPUT_DEVS_MAX; i++) /* the devices: owner -100 - place */
-			if (input_devs_fd(&L->devs, i) >= 0) {
-				fds[n] = (struct pollfd){ .fd = input_devs_fd(&L->devs, i), .events = POLLIN };
-				owner[n++] = -100 - i;
-			}
+		/* the devices: owner -100 - their tag */
+		int tags[INPUT_DEVS_POLL_MAX];
+		int nd = input_devs_pollfds(&L->devs, fds + n, tags, INPUT_DEVS_POLL_MAX);
+		for (int k = 0; k < nd; k++)
+			owner[n++] = -100 - tags[k];
 		uint64_t now = real_now(NULL);
 		int timeout = now >= next ? 0 : (int)((next - now + 999) / 1000);
 		if (poll(fds, (nfds_t)n, timeout) < 0 && errno != EINTR) {
@@ -430,7 +448,7 @@ loop_run(const struct loop_config *cfg)
 			if (!fds[k].revents)
 				continue;
 			if (owner[k] <= -100)
-				input_devs_read(&L->devs, -100 - owner[k], real_now(NULL), &L->input);
+				input_devs_ready(&L->devs, -100 - owner[k], real_now(NULL), &L->input);
 			else if (owner[k] == -3)
 				L->stop = 1;
 			else if (owner[k] < 0)

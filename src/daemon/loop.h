@@ -23,6 +23,8 @@ struct loop_config {
 	const char *panel_map;   /* the dial panel's map (devices/can_map.h), NULL: none */
 	const char *const *inputs; /* --input specs (devices/input_devs.h); none: auto */
 	int ninputs;
+	int grab;                  /* the kiosk grab on the devices that have one */
+	double pointer_gain;       /* pixels per 1/1000 inch of mouse motion */
 };
 
 /* runs until SIGTERM or SIGINT; returns the process exit status */

@@ -29,7 +29,11 @@ static const char usage[] =
 	"  --init FILE        commands to run when the state is empty (a first start)\n"
 	"  --library DIR      shipped figure files, loaded as 'load figure lib:NAME'\n"
 	"  --input SPEC       the devices to read (repeatable): auto (the default: every\n"
-	"                     mouse and keyboard in /dev/input), evdev:PATH, or none\n"
+	"                     mouse and keyboard in /dev/input), evdev:PATH, hidraw:VID:PID[:IFACE],\n"
+	"                     usb:VID:PID[:IFACE], can:IFACE:MAPFILE, or none\n"
+	"  --grab yes|no      the kiosk grab: the evdev devices read by this daemon alone, not\n"
+	"                     the console (default no; the way out: postured(8), GRAB)\n"
+	"  --pointer-gain G   screen pixels per 1/1000 inch of mouse motion (default 1)\n"
 	"  --panel FILE       the dial panel's map: its axes and buttons by name (see\n"
 	"                     devices/can_map.h; tools/dbc2panel makes one from a DBC file)\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
@@ -45,8 +49,8 @@ struct settings {
 	char input[INPUT_DEVS_MAX][INPUT_DEVS_SPEC_MAX];
 	const char *inputs[INPUT_DEVS_MAX];
 	int ninputs;
-	double fps;
-	int tcp;
+	double fps, pointer_gain;
+	int tcp, grab;
 };
 
 static int
@@ -72,6 +76,18 @@ set(struct settings *s, const char *key, const char *val)
 		snprintf(s->input[s->ninputs], sizeof s->input[0], "%s", val);
 		s->inputs[s->ninputs] = s->input[s->ninputs];
 		s->ninputs++;
+	} else if (!strcmp(key, "grab")) {
+		if (strcmp(val, "yes") && strcmp(val, "no")) {
+			fprintf(stderr, "postured: grab must be yes or no\n");
+			return -1;
+		}
+		s->grab = !strcmp(val, "yes");
+	} else if (!strcmp(key, "pointer-gain")) {
+		s->pointer_gain = strtod(val, &end);
+		if (*end || !(s->pointer_gain > 0 && s->pointer_gain <= 100)) {
+			fprintf(stderr, "postured: pointer-gain must be a number above 0, at most 100\n");
+			return -1;
+		}
 	} else if (!strcmp(key, "panel"))
 		snprintf(s->panel, sizeof s->panel, "%s", val);
 	else if (!strcmp(key, "init"))
@@ -167,6 +183,7 @@ defaults(struct settings *s)
 	else
 		snprintf(s->state_dir, sizeof s->state_dir, "%s/.local/state/posture", home ? home : ".");
 	s->fps = 60;
+	s->pointer_gain = 1;
 }
 
 int
@@ -211,6 +228,7 @@ main(int argc, char **argv)
 	struct loop_config cfg = { s.socket, s.state_dir, s.frames[0] ? s.frames : NULL, s.fps,
 				   s.tcp, s.token, s.init[0] ? s.init : NULL,
 				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL,
-				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs };
+				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs,
+				   s.grab, s.pointer_gain };
 	return loop_run(&cfg);
 }
