@@ -216,3 +216,29 @@ cmd_list_devices(struct cmd_ctx *c)
 	json_object_set_new(c->result, "skipped", skip);
 	return 0;
 }
+
+int
+cmd_set_input(struct cmd_ctx *c)
+{
+	if (!c->d->set_input)
+		return cmd_fail(c, "bad-argument", "this daemon reads no devices");
+	for (int i = 0; i < c->argc; i++)
+		if (strncmp(c->argv[i], "grab=", 5) && strncmp(c->argv[i], "gain=", 5))
+			return cmd_fail(c, "bad-argument", "grab=yes|no or gain=G, not '%.40s'",
+					c->argv[i]);
+	const char *g = cmd_key(c, "grab"), *k = cmd_key(c, "gain");
+	int grab = -1;
+	double gain = 0;
+	if (g) {
+		if (strcmp(g, "yes") && strcmp(g, "no"))
+			return cmd_fail(c, "bad-argument", "grab=yes or grab=no, not '%.20s'", g);
+		grab = !strcmp(g, "yes");
+	}
+	if (k && (words_number(k, UNIT_NONE, &gain) < 0 || !(gain > 0 && gain <= 100)))
+		return cmd_fail(c, "bad-argument", "gain is a number above 0, at most 100");
+	if (c->d->set_input(c->d, grab, gain) < 0)
+		return cmd_fail(c, "busy", "a device refused the grab (another reader holds it)");
+	json_object_set_new(c->result, "grab", json_boolean(c->d->devices && c->d->devices->grab));
+	json_object_set_new(c->result, "gain", json_real(c->d->pointer_gain));
+	return 0;
+}

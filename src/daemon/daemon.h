@@ -68,6 +68,9 @@ struct daemon {
 	const struct can_map *panel;
 	/* the devices read directly (list devices); NULL: none */
 	const struct input_devs *devices;
+	/* the kiosk grab (grab -1: unchanged) and the pointer gain (0: unchanged); NULL: none */
+	int (*set_input)(struct daemon *d, int grab, double gain);
+	double pointer_gain;
 };
 
 /* frees the undo and redo texts */

@@ -16,6 +16,8 @@
 #include "daemon/notify.h"
 #include "daemon/scene.h"
 #include "devices/input_backends.h"
+#include "devices/escape_chord.h"
+#include "devices/hotplug.h"
 #include "devices/input_devs.h"
 #include "devices/motion_scale.h"
 #include "pose/attach.h"
@@ -37,6 +39,8 @@ struct loop {
 	/* each device's motion to pixels; the last: the socket's input lines */
 	struct motion_scale pointer[INPUT_DEVS_MAX + 1];
 	double pointer_gain;
+	struct hotplug hotplug;   /* devices arriving; fd -1: not watched */
+	struct escape_chord escape; /* the grab's way out at the keyboard */
 	struct scene scene;   /* the views' pictures */
 	int stop;
 };
@@ -77,6 +81,11 @@ take_input(struct loop *L)
 			motion_scale_init(m, L->devs.place[e.device].info.dpi, L->pointer_gain);
 		else if (e.kind == INPUT_MOTION)
 			motion_scale_apply(m, e.x, e.y, &px, &py);
+		if (escape_chord_feed(&L->escape, &e) && L->devs.grab) {
+			input_devs_set_grab(&L->devs, 0);
+			fprintf(stderr, "postured: Ctrl+Alt+Backspace: the kiosk grab given up "
+					"('set input grab=yes' takes it again)\n");
+		}
 		events_input(&L->events, &e, px, py);
 	}
 }
@@ -352,6 +361,7 @@ open_devices(struct loop *L, const struct loop_config *cfg, char *err, size_t er
 	const char *const *spec = cfg->ninputs ? cfg->inputs : fallback;
 	int nspec = cfg->ninputs ? cfg->ninputs : 1;
 	L->pointer_gain = cfg->pointer_gain > 0 ? cfg->pointer_gain : 1;
+	L->d.pointer_gain = L->pointer_gain;
 	for (int i = 0; i <= INPUT_DEVS_MAX; i++)
 		motion_scale_init(&L->pointer[i], INPUT_DEV_DPI_DEFAULT, L->pointer_gain);
 	input_devs_init(&L->devs, input_backends, input_backends_count, cfg->grab, &L->input);
@@ -363,7 +373,44 @@ open_devices(struct loop *L, const struct loop_config *cfg, char *err, size_t er
 	for (int k = 0; k < L->devs.nskip; k++)
 		fprintf(stderr, "postured: input %s skipped: %s\n", L->devs.skip[k].what,
 			L->devs.skip[k].why);
+	/* hot-plug: only when something is read directly; a monitor refused is said once */
+	L->hotplug.fd = -1;
+	const char *source = cfg->hotplug ? cfg->hotplug : "udev";
+	if (L->devs.nspec && strcmp(source, "none") &&
+	    !(nspec == 1 && !strcmp(spec[0], "none")) &&
+	    hotplug_open(&L->hotplug, source, err, errlen) < 0)
+		fprintf(stderr, "postured: no hot-plug (devices are read as they were at start): %s\n",
+			err);
 	return 0;
+}
+
+/* something arrived: the specs opened again, what is new announced */
+static void
+devices_arrived(struct loop *L)
+{
+	if (hotplug_read(&L->hotplug) <= 0)
+		return;
+	if (input_devs_rescan(&L->devs, real_now(NULL)) > 0)
+		announce_devices(L);
+}
+
+static int
+set_input(struct daemon *d, int grab, double gain)
+{
+	struct loop *L = d->loop;
+	int rc = 0;
+	if (grab >= 0)
+		rc = input_devs_set_grab(&L->devs, grab);
+	if (gain > 0) {
+		L->pointer_gain = gain;
+		for (int i = 0; i <= INPUT_DEVS_MAX; i++)
+			motion_scale_init(&L->pointer[i],
+					  i < INPUT_DEVS_MAX && L->devs.place[i].be ? L->devs.place[i].info.dpi
+										    : INPUT_DEV_DPI_DEFAULT,
+					  gain);
+	}
+	d->pointer_gain = L->pointer_gain;
+	return rc;
 }
 
 int
@@ -380,6 +427,8 @@ loop_run(const struct loop_config *cfg)
 	L->d.run_frame = settle_frame;
 	L->d.subscribe = subscribe;
 	L->d.render_view = render_view;
+	L->d.set_input = set_input;
+	L->hotplug.fd = -1;
 	input_queue_init(&L->input);
 	L->d.input = &L->input;
 	L->d.now_us = clock_us;
@@ -426,13 +475,17 @@ loop_run(const struct loop_config *cfg)
 	notify_send("READY=1");
 	fprintf(stderr, "postured: listening on %s%s\n", cfg->socket_path,
 		cfg->tcp_port > 0 ? " and 127.0.0.1 (token required)" : "");
-	static struct pollfd fds[SERVER_MAX_CLIENTS + 3 + INPUT_DEVS_POLL_MAX];
-	static int owner[SERVER_MAX_CLIENTS + 3 + INPUT_DEVS_POLL_MAX];
+	static struct pollfd fds[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
+	static int owner[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
 	uint64_t next = real_now(NULL) + L->period_us;
 	while (!L->stop) {
 		int n = server_pollfds(&L->srv, fds, owner);
 		fds[n] = (struct pollfd){ .fd = L->sig_fd, .events = POLLIN };
 		owner[n++] = -3;
+		if (hotplug_fd(&L->hotplug) >= 0) {
+			fds[n] = (struct pollfd){ .fd = hotplug_fd(&L->hotplug), .events = POLLIN };
+			owner[n++] = -4;
+		}
 		/* the devices: owner -100 - their tag */
 		int tags[INPUT_DEVS_POLL_MAX];
 		int nd = input_devs_pollfds(&L->devs, fds + n, tags, INPUT_DEVS_POLL_MAX);
@@ -451,6 +504,8 @@ loop_run(const struct loop_config *cfg)
 				input_devs_ready(&L->devs, -100 - owner[k], real_now(NULL), &L->input);
 			else if (owner[k] == -3)
 				L->stop = 1;
+			else if (owner[k] == -4)
+				devices_arrived(L);
 			else if (owner[k] < 0)
 				server_accept(&L->srv, fds[k].fd);
 			else if (L->srv.c[owner[k]].fd == fds[k].fd &&
@@ -491,6 +546,7 @@ out:
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
 	input_devs_close_all(&L->devs, real_now(NULL), &L->input);
+	hotplug_close(&L->hotplug);
 	events_free(&L->events);
 	scene_free(&L->scene);
 	free(L);

@@ -25,6 +25,7 @@ struct loop_config {
 	int ninputs;
 	int grab;                  /* the kiosk grab on the devices that have one */
 	double pointer_gain;       /* pixels per 1/1000 inch of mouse motion */
+	const char *hotplug;       /* "udev" (NULL: the same), "kernel" or "none" (devices/hotplug.h) */
 };
 
 /* runs until SIGTERM or SIGINT; returns the process exit status */

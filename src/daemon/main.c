@@ -34,6 +34,8 @@ static const char usage[] =
 	"  --grab yes|no      the kiosk grab: the evdev devices read by this daemon alone, not\n"
 	"                     the console (default no; the way out: postured(8), GRAB)\n"
 	"  --pointer-gain G   screen pixels per 1/1000 inch of mouse motion (default 1)\n"
+	"  --hotplug SOURCE   devices arriving are opened: udev (the default), kernel (no\n"
+	"                     udevd; needs root) or none\n"
 	"  --panel FILE       the dial panel's map: its axes and buttons by name (see\n"
 	"                     devices/can_map.h; tools/dbc2panel makes one from a DBC file)\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
@@ -45,7 +47,7 @@ static const char usage[] =
 
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
-	char fb[PATH_MAX], panel[PATH_MAX], token[128];
+	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16];
 	char input[INPUT_DEVS_MAX][INPUT_DEVS_SPEC_MAX];
 	const char *inputs[INPUT_DEVS_MAX];
 	int ninputs;
@@ -88,6 +90,12 @@ set(struct settings *s, const char *key, const char *val)
 			fprintf(stderr, "postured: pointer-gain must be a number above 0, at most 100\n");
 			return -1;
 		}
+	} else if (!strcmp(key, "hotplug")) {
+		if (strcmp(val, "udev") && strcmp(val, "kernel") && strcmp(val, "none")) {
+			fprintf(stderr, "postured: hotplug must be udev, kernel or none\n");
+			return -1;
+		}
+		snprintf(s->hotplug, sizeof s->hotplug, "%s", val);
 	} else if (!strcmp(key, "panel"))
 		snprintf(s->panel, sizeof s->panel, "%s", val);
 	else if (!strcmp(key, "init"))
@@ -229,6 +237,6 @@ main(int argc, char **argv)
 				   s.tcp, s.token, s.init[0] ? s.init : NULL,
 				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL,
 				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs,
-				   s.grab, s.pointer_gain };
+				   s.grab, s.pointer_gain, s.hotplug[0] ? s.hotplug : NULL };
 	return loop_run(&cfg);
 }

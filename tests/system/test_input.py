@@ -2,6 +2,7 @@
 the real daemon: each line becomes the event a device would give, in order, with the
 kernel's codes; bad lines change nothing."""
 import re
+from fractions import Fraction
 
 import pytest
 
@@ -63,6 +64,33 @@ def test_each_line_becomes_the_event_a_device_gives(daemon):
         # times come from the daemon's monotonic clock, in order
         times = [e["t_us"] for e in evs]
         assert times == sorted(times) and times[0] > 0
+
+
+def test_motion_in_pixels_keeps_the_fractions_and_the_raw_counts(daemon):
+    """Motion is flat: pixels = counts * gain * 1000 / DPI (1000 for the socket), whole
+    pixels out, the fractions kept; the raw counts stay beside them."""
+    with daemon.client() as c:
+        assert c.request("set input gain=2.5") == {"grab": False, "gain": 2.5}
+        assert c.subscribe("input") == {}
+        moves = [(3, -2), (0.3, 0.3), (0.3, -0.1), (0.3, 0.1), (-1, 0)]
+        for dx, dy in moves:
+            assert c.request(f"input motion {dx} {dy}") == {"queued": True}
+        evs, _ = input_events(c, len(moves))
+        assert [(e["dx"], e["dy"]) for e in evs] == [(dx, dy) for dx, dy in moves]
+        # the rule in exact arithmetic: the carried fraction plus the new motion,
+        # truncated toward zero (so small back-and-forth motion does not jitter)
+        k = Fraction(5, 2)
+        for axis, got in (("dx", [e["px"] for e in evs]), ("dy", [e["py"] for e in evs])):
+            rem, want, given, total = Fraction(0), [], 0, Fraction(0)
+            for e in evs:
+                rem += k * Fraction(str(e[axis]))
+                whole = int(rem)  # toward zero
+                rem -= whole
+                want.append(whole)
+                given += whole
+                total += k * Fraction(str(e[axis]))
+                assert abs(given - total) < 1  # never a pixel or more from the exact sum
+            assert got == want, axis
 
 
 def test_kernel_key_names_are_taken_with_the_kernels_numbers(daemon):
