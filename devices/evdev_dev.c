@@ -329,6 +329,15 @@ evdev_backend_close(void *dev, uint64_t now_us, struct input_queue *q)
 	free(dev);
 }
 
+static void
+evdev_backend_stats(const void *dev, struct input_dev_stats *dest)
+{
+	const struct evdev_dev *d = dev;
+	*dest = (struct input_dev_stats){ .reads = d->reads, .capped = d->capped,
+					  .resyncs = d->resyncs,
+					  .errors = d->in.short_records + d->in.unknown_events };
+}
+
 static int
 evdev_backend_set_grab(void *dev, int on)
 {
@@ -412,5 +421,6 @@ const struct input_backend input_backend_evdev = {
 	.fd = evdev_backend_fd,
 	.read = evdev_backend_read,
 	.close = evdev_backend_close,
+	.stats = evdev_backend_stats,
 	.set_grab = evdev_backend_set_grab,
 };

@@ -3,6 +3,7 @@
 
 #include <ctype.h>
 #include <libudev.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -56,17 +57,32 @@ mouse_dpi_parse(const char *value)
 	return n == 1 ? only : 0;
 }
 
+/* the udev device of an event node: by its name under /sys/class/input, else by number */
+static struct udev_device *
+mouse_dpi_device(struct udev *u, const char *path)
+{
+	/* by name first; a link (/dev/input/by-id/...) by its device number. Not realpath():
+	 * cheap enough, but umockdev's wrapper of it corrupts the heap, and the tests run
+	 * this under umockdev */
+	const char *base = strrchr(path, '/');
+	base = base ? base + 1 : path;
+	struct udev_device *d = NULL;
+	if (!strncmp(base, "event", 5))
+		d = udev_device_new_from_subsystem_sysname(u, "input", base);
+	struct stat st;
+	if (!d && stat(path, &st) == 0 && S_ISCHR(st.st_mode))
+		d = udev_device_new_from_devnum(u, 'c', st.st_rdev);
+	return d;
+}
+
 double
 mouse_dpi_of_node(const char *path)
 {
-	struct stat st;
-	if (stat(path, &st) < 0 || !S_ISCHR(st.st_mode))
-		return INPUT_DEV_DPI_DEFAULT;
 	struct udev *u = udev_new();
 	if (!u)
 		return INPUT_DEV_DPI_DEFAULT;
 	double dpi = 0;
-	struct udev_device *d = udev_device_new_from_devnum(u, 'c', st.st_rdev);
+	struct udev_device *d = mouse_dpi_device(u, path);
 	if (d) {
 		const char *v = udev_device_get_property_value(d, "MOUSE_DPI");
 		if (v)

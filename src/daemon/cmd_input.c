@@ -204,6 +204,14 @@ cmd_list_devices(struct cmd_ctx *c)
 		if (p->info.cls == INPUT_CLASS_MOUSE)
 			json_object_set_new(o, "dpi", json_real(p->info.dpi));
 		json_object_set_new(o, "grabbed", json_boolean(p->info.grabbed));
+		if (p->be->stats) {
+			struct input_dev_stats st;
+			p->be->stats(p->dev, &st);
+			json_object_set_new(o, "reads", json_integer((json_int_t)st.reads));
+			json_object_set_new(o, "capped", json_integer((json_int_t)st.capped));
+			json_object_set_new(o, "resyncs", json_integer((json_int_t)st.resyncs));
+			json_object_set_new(o, "errors", json_integer((json_int_t)st.errors));
+		}
 		json_array_append_new(open, o);
 	}
 	for (int k = 0; s && k < s->nskip; k++) {

@@ -84,3 +84,44 @@ def test_a_mocked_mouse_reaches_subscribers(tmp_path):
     finally:
         d.stop()
         d.cleanup()
+
+
+def test_motion_in_pixels_follows_the_mouses_dpi_from_udev(tmp_path):
+    """udev's MOUSE_DPI (hwdb form, default marked '*') reaches `list devices` through
+    libudev, and motion in pixels is the counts * gain * 1000 / DPI with the fractions
+    kept; the raw counts stay beside them."""
+    desc = tmp_path / "mouse.umockdev"
+    text = (MOCK / "mouse.umockdev").read_text()
+    desc.write_text(text.replace("E: ID_INPUT_MOUSE=1\n",
+                                 "E: ID_INPUT_MOUSE=1\nE: MOUSE_DPI=400@125 *800@125 1600@125\n", 1))
+    rec = tmp_path / "mouse.evemu"
+    delayed(EVDEV / "mouse.evemu", rec, 3.0)
+    d = Daemon(extra=("--input", f"evdev:{NODE}", "--pointer-gain", "2"))
+    d.argv = [UMOCKDEV_RUN, "-d", str(desc), "-i", f"{NODE}={MOCK}/mouse.ioctl",
+              "-e", f"{NODE}={rec}", "--"] + d.argv
+    d.start()
+    try:
+        with d.client() as c:
+            c.subscribe("input")
+            listed = c.request("list devices")
+            assert listed["devices"][0]["dpi"] == 800
+            assert listed["devices"][0]["reads"] >= 0 and listed["devices"][0]["errors"] == 0
+            want = [w for w in expected(EVDEV / "mouse.evemu") if w[0] == "motion"]
+            got = []
+            for ev in c.events(timeout=10):
+                if ev["kind"] == "motion":
+                    got.append(ev)
+                if len(got) == len(want):
+                    break
+            assert [(f"{e['dx']:g}", f"{e['dy']:g}") for e in got] == [w[1:] for w in want]
+            k = 2 * 1000 / 800  # 2.5 px a count
+            for axis, pix in (("dx", "px"), ("dy", "py")):
+                rem = 0.0
+                for e in got:
+                    rem += k * e[axis]
+                    whole = int(rem)
+                    rem -= whole
+                    assert e[pix] == whole, (axis, e)
+    finally:
+        d.stop()
+        d.cleanup()
