@@ -311,7 +311,11 @@ hidraw_dev_set_multipliers(struct hidraw_dev *d, hidraw_dev_feature_fn feature, 
 {
 	struct hid_desc *desc = &d->desc;
 	uint8_t ok[HID_DESC_MAX_MULTIPLIERS] = { 0 }, done[HID_DESC_MAX_MULTIPLIERS] = { 0 };
-	uint8_t rep[1 + HIDRAW_DEV_REPORT_MAX];
+	/*
+	 * the id byte and the report: no longer than the kernel's
+	 * HID_MAX_BUFFER_SIZE (4096 on 6.1), or HIDIOCGFEATURE fails with EINVAL
+	 */
+	uint8_t rep[HIDRAW_DEV_REPORT_MAX];
 	int written = 0;
 
 	/* one GET and one SET a feature report, all its multipliers set, as the kernel does */

@@ -11,9 +11,13 @@
  * backend must release the button and remove the device; the keyboard
  * must still work; then it goes too.
  *
- *   guest_hidraw TWO.hid MOUSE.hid
+ *   guest_hidraw TWO.hid MOUSE.hid HIRES.rdesc
  * TWO.hid: a recording of a mouse (device 0) and a keyboard (device 1)
- * with the same ids; MOUSE.hid: more reports of the same mouse. One line
+ * with the same ids; MOUSE.hid: more reports of the same mouse;
+ * HIRES.rdesc: a mouse whose wheels have Resolution Multipliers, made
+ * last: the kernel and the backend write them, the fake answers (in a
+ * thread of its own, as the requests block the writer), and the hi-res
+ * wheel events must agree. One line
  * a check ("ok ...", "FAIL ...: why"); the exit status is the failures.
  */
 #include <dirent.h>
@@ -23,6 +27,8 @@
 #include <linux/input.h>
 #include <linux/uhid.h>
 #include <poll.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -90,6 +96,18 @@ struct fake {
 	int evfd;               /* the kernel's evdev node, read raw */
 	int place;              /* its place in the device set, -1 */
 	const struct rec_hid_device *rec;
+	/* a device with feature reports answers the kernel's requests in its own thread */
+	pthread_t answerer;
+	int answering;
+	atomic_int stop;
+	pthread_mutex_t lock;
+	uint8_t feature[16];    /* the feature report as the device holds it (id byte first) */
+	size_t feature_len;
+	uint8_t get_answer[16]; /* what GET_REPORT answers once, then the held report */
+	size_t get_answer_len;
+	int gets, sets;
+	uint8_t last_set[16];
+	size_t last_set_len;
 };
 
 static int
@@ -136,10 +154,51 @@ static void
 uhid_drain(struct fake *f)
 {
 	static struct uhid_event ev;
+	if (f->answering)
+		return; /* its thread reads */
 	struct pollfd p = { .fd = f->uhid, .events = POLLIN };
 	while (poll(&p, 1, 0) == 1 && (p.revents & POLLIN))
 		if (read(f->uhid, &ev, sizeof ev) <= 0)
 			break;
+}
+
+/* the fake's side of GET_REPORT and SET_REPORT (feature reports), until told to stop */
+static void *
+uhid_answer(void *arg)
+{
+	struct fake *f = arg;
+	static struct uhid_event ev, reply;
+	while (!atomic_load(&f->stop)) {
+		struct pollfd p = { .fd = f->uhid, .events = POLLIN };
+		if (poll(&p, 1, 50) != 1 || read(f->uhid, &ev, sizeof ev) <= 0)
+			continue;
+		memset(&reply, 0, sizeof reply);
+		pthread_mutex_lock(&f->lock);
+		if (ev.type == UHID_GET_REPORT) {
+			reply.type = UHID_GET_REPORT_REPLY;
+			reply.u.get_report_reply.id = ev.u.get_report.id;
+			const uint8_t *src = f->get_answer_len ? f->get_answer : f->feature;
+			size_t n = f->get_answer_len ? f->get_answer_len : f->feature_len;
+			reply.u.get_report_reply.size = (uint16_t)n;
+			memcpy(reply.u.get_report_reply.data, src, n);
+			f->get_answer_len = 0;
+			f->gets++;
+		} else if (ev.type == UHID_SET_REPORT) {
+			reply.type = UHID_SET_REPORT_REPLY;
+			reply.u.set_report_reply.id = ev.u.set_report.id;
+			size_t n = ev.u.set_report.size < sizeof f->feature ? ev.u.set_report.size
+									 : sizeof f->feature;
+			memcpy(f->feature, ev.u.set_report.data, n);
+			f->feature_len = n;
+			memcpy(f->last_set, ev.u.set_report.data, n);
+			f->last_set_len = n;
+			f->sets++;
+		}
+		pthread_mutex_unlock(&f->lock);
+		if (reply.type && write(f->uhid, &reply, sizeof reply) != (ssize_t)sizeof reply)
+			break;
+	}
+	return NULL;
 }
 
 /* the first eventN below dir (an input device's folder) into dest */
@@ -395,11 +454,135 @@ place_of(const char *hidraw)
 	return -1;
 }
 
+/* ---- a hi-res wheel: the Resolution Multipliers written ---------------------------------- */
+
+static size_t
+read_rdesc(const char *path, uint8_t *dest, size_t max)
+{
+	FILE *f = fopen(path, "r");
+	if (!f)
+		return 0;
+	char line[512];
+	size_t n = 0;
+	while (fgets(line, sizeof line, f)) {
+		char *hash = strchr(line, '#');
+		if (hash)
+			*hash = '\0';
+		for (char *p = strtok(line, " \t\r\n"); p && n < max; p = strtok(NULL, " \t\r\n"))
+			dest[n++] = (uint8_t)strtoul(p, NULL, 16);
+	}
+	fclose(f);
+	return n;
+}
+
+/*
+ * A mouse whose wheel and AC Pan have Resolution Multipliers (8 and 4) in
+ * feature report 0. The kernel's hid-input writes them when it binds; then
+ * the fake forgets them (as a device that was reset would) and answers the
+ * backend's GET with other bits set: the backend must write the
+ * multipliers again, keeping those bits, and its wheel events must agree
+ * with hid-input's REL_WHEEL_HI_RES and REL_HWHEEL_HI_RES.
+ */
+static void
+hires_phase(const char *rdesc_path)
+{
+	static struct rec_hid_device rd = { .name = "Posture Hi-Res Wheel Mouse", .bus = 3,
+					    .vid = 0xf055, .pid = 0x0048 };
+	rd.desc_len = (uint16_t)read_rdesc(rdesc_path, rd.desc, sizeof rd.desc);
+	if (!rd.desc_len) {
+		fail("hires", "cannot read %s", rdesc_path);
+		return;
+	}
+	static struct fake f = { .role = "hi-res mouse", .rec = &rd, .place = -1, .evfd = -1 };
+	pthread_mutex_init(&f.lock, NULL);
+	f.feature_len = 3; /* id 0, then the two multipliers' bytes */
+	const char *phys = "posture-guest/hires";
+	if (uhid_create(&f, phys) < 0) {
+		fail("hires", "UHID_CREATE2: %s", strerror(errno));
+		return;
+	}
+	atomic_init(&f.stop, 0);
+	f.answering = pthread_create(&f.answerer, NULL, uhid_answer, &f) == 0;
+	int tries = 0;
+	while (find_nodes(&f, phys) < 0 && tries++ < 100)
+		sleep_ms(50);
+	if (!f.event[0]) {
+		fail("hires", "no hidraw and evdev nodes");
+		goto out;
+	}
+	f.evfd = open(f.event, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+	pthread_mutex_lock(&f.lock);
+	int kernel_sets = f.sets;
+	printf("   hid-input bound it: %d SET_REPORT(s), the last %02x %02x %02x\n", f.sets,
+	       f.last_set[0], f.last_set[1], f.last_set[2]);
+	/* forgotten; the next GET answers with bits the backend must keep */
+	memset(f.feature, 0, sizeof f.feature);
+	static const uint8_t other_bits[3] = { 0x00, 0xfc, 0x00 };
+	memcpy(f.get_answer, other_bits, sizeof other_bits);
+	f.get_answer_len = sizeof other_bits;
+	f.sets = f.gets = 0;
+	pthread_mutex_unlock(&f.lock);
+
+	char err[256];
+	if (input_devs_open(&set, "hidraw:f055:0048", now_us(), err, sizeof err) != 1 ||
+	    (f.place = place_of(f.hidraw)) < 0) {
+		fail("hires", "hidraw:f055:0048 was not opened");
+		goto out;
+	}
+	struct input_event_rec e;
+	while (input_queue_pop(&q, &e))
+		;
+	pthread_mutex_lock(&f.lock);
+	int gets = f.gets, sets = f.sets;
+	uint8_t set_bytes[3];
+	memcpy(set_bytes, f.last_set, 3);
+	size_t set_len = f.last_set_len;
+	pthread_mutex_unlock(&f.lock);
+	if (kernel_sets >= 1 && gets == 1 && sets == 1 && set_len == 3 && set_bytes[0] == 0x00 &&
+	    set_bytes[1] == 0xfd && set_bytes[2] == 0x01)
+		ok("hi-res: the backend read feature report 0 and wrote it back with both "
+		   "multipliers at their logical maximum, the other bits kept (00 fd 01)");
+	else
+		fail("hires", "kernel SETs %d; ours: %d GET(s), %d SET(s) of %zu bytes %02x %02x %02x "
+		     "(want 1, 1, 3: 00 fd 01)",
+		     kernel_sets, gets, sets, set_len, set_bytes[0], set_bytes[1], set_bytes[2]);
+
+	/* buttons, X and Y (16 bits each), the wheel, AC Pan */
+	static const uint8_t wheel[][7] = {
+		{ 0, 0, 0, 0, 0, 1, 0 },    /* 1/8 detent: 15 in 1/120 */
+		{ 0, 0, 0, 0, 0, 1, 0 },
+		{ 0, 0, 0, 0, 0, 1, 0 },
+		{ 0, 0, 0, 0, 0, 5, 0 },    /* 75 more: a whole detent reached */
+		{ 0, 0, 0, 0, 0, 0, 0xff }, /* pan -1/4 detent: -30 */
+		{ 1, 3, 0, 0xfe, 0xff, 0, 0 }, /* BTN_LEFT, X 3, Y -2 */
+		{ 0, 0, 0, 0, 0, 0, 0 },
+	};
+	for (size_t k = 0; k < sizeof wheel / sizeof wheel[0]; k++)
+		agree(&f, wheel[k], sizeof wheel[k], "hi-res");
+
+out:
+	if (f.place >= 0)
+		uhid_destroy(&f);
+	int removed = 0, n = 0;
+	struct ev3 gone[EV_MAX_FRAME];
+	if (f.place >= 0 && ours_frame(f.place, gone, &n, INPUT_REMOVED, &removed) == 0 && removed)
+		ok("hi-res mouse gone: removed");
+	else if (f.place >= 0)
+		fail("hires", "not removed after UHID_DESTROY");
+	atomic_store(&f.stop, 1);
+	if (f.answering)
+		pthread_join(f.answerer, NULL);
+	if (f.evfd >= 0)
+		close(f.evfd);
+	close(f.uhid);
+	pthread_mutex_destroy(&f.lock);
+}
+
 int
 main(int argc, char **argv)
 {
-	if (argc != 3) {
-		fprintf(stderr, "usage: guest_hidraw TWO.hid MOUSE.hid\n");
+	if (argc != 4) {
+		fprintf(stderr, "usage: guest_hidraw TWO.hid MOUSE.hid HIRES.rdesc\n");
 		return 100;
 	}
 	static struct rec_hid two, more;
@@ -578,6 +761,8 @@ main(int argc, char **argv)
 		ok("keyboard gone: removed, nothing to release");
 	if (input_devs_count(&set) != 0)
 		fail("keyboard gone", "%d device(s) still open", input_devs_count(&set));
+
+	hires_phase(argv[3]);
 
 out:
 	input_devs_close_all(&set, now_us(), NULL);

@@ -1,6 +1,9 @@
 """The hidraw backend against the kernel: uhid devices made from a hid-recorder recording,
 opened through hidapi by the device set, checked report by report against the kernel's own
-hid-input evdev node, then destroyed mid-press (tests/guest/guest_hidraw.c says what is checked).
+hid-input evdev node, then destroyed mid-press; and a mouse with hi-res wheels, whose Resolution
+Multipliers the backend must write (the fake answers GET_REPORT and SET_REPORT) and whose wheel
+events must agree with hid-input's REL_WHEEL_HI_RES (tests/guest/guest_hidraw.c says what is
+checked).
 
 Select it with `pytest tests/guest`.  It skips, saying why, when QEMU or the guest kernel is
 unavailable (POSTURE_GUEST=skip skips it on purpose) or the guest program was not built
@@ -40,6 +43,9 @@ EXPECTED = (
     "its place is free; the keyboard is still open",
     "keyboard after report",
     "keyboard gone: removed, nothing to release",
+    "hi-res: the backend read feature report 0 and wrote it back with both multipliers",
+    "hi-res mouse hi-res report",
+    "hi-res mouse gone: removed",
 )
 
 
@@ -65,7 +71,9 @@ def test_guest_hidraw_agrees_with_hid_input(tier):
                         "--timeout", "240",
                         "--file", "%s:/guest/two.hid" % (HID / "hidtools_two.hid"),
                         "--file", "%s:/guest/mouse.hid" % (HID / "hidtools_mouse.hid"),
-                        str(BINARY), "/guest/two.hid", "/guest/mouse.hid"],
+                        "--file", "%s:/guest/hires.rdesc" % (HID / "hires_wheel.rdesc"),
+                        str(BINARY), "/guest/two.hid", "/guest/mouse.hid",
+                        "/guest/hires.rdesc"],
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     print(p.stdout)
     assert p.returncode != 125, "the guest did not run:\n" + p.stdout
@@ -80,5 +88,9 @@ def test_guest_hidraw_agrees_with_hid_input(tier):
     # the line that says the mouse went away blames the device and counts the release
     assert any("device fault: gone" in ln and "1 key(s) and button(s) released" in ln
                for ln in lines)
-    assert "guest_hidraw: 29 checks, 0 failures" in lines
+    # the hi-res wheel: 15 in 1/120 a count (multiplier 8), a detent after 120, pan -30
+    assert any("hi-res report: 00 00 00 00 00 05 00" in ln and "2/8/1 2/11/75" in ln
+               for ln in lines)
+    assert sum("hi-res mouse hi-res report" in ln for ln in passed) == 7
+    assert "guest_hidraw: 38 checks, 0 failures" in lines
     assert p.returncode == 0
