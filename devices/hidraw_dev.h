@@ -167,8 +167,9 @@ hidraw_dev_parse_spec(const char *arg, uint16_t *vid, uint16_t *pid, int *iface,
 /*
  * The hidraw nodes hid_enumerate lists for vid:pid (0 matches any) that
  * hold a mouse or keyboard collection, on interface iface (-1: any), one
- * per path, in hidapi's order, at most max into dest. Returns the count,
- * or -1 with err when hidapi cannot enumerate at all.
+ * per path, in hidapi's order, at most max into dest. Returns the count;
+ * when it is 0, err says why (hidapi's message when it found nothing, as
+ * 0.13.1 does not tell "no device" from "cannot enumerate").
  */
 int
 hidraw_dev_enumerate(uint16_t vid, uint16_t pid, int iface, struct hidraw_dev_found *dest,
