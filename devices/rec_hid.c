@@ -367,24 +367,36 @@ write_hex(FILE *out, const uint8_t *b, unsigned n)
 	fputc('\n', out);
 }
 
+void
+rec_hid_write_device(FILE *out, const struct rec_hid_device *dev, int index)
+{
+	/* as hidraw.py's dump() writes it */
+	if (index >= 0)
+		fprintf(out, "D: %d\n", index);
+	fprintf(out, "# %s\n", dev->name);
+	fprintf(out, "R: %u", dev->desc_len);
+	write_hex(out, dev->desc, dev->desc_len);
+	fprintf(out, "N: %s\n", dev->name);
+	if (dev->phys[0])
+		fprintf(out, "P: %s\n", dev->phys);
+	fprintf(out, "I: %x %04x %04x\n", dev->bus, dev->vid, dev->pid);
+}
+
+void
+rec_hid_write_event(FILE *out, uint64_t t_us, const uint8_t *bytes, unsigned len)
+{
+	fprintf(out, "E: %06" PRIu64 ".%06u %u", t_us / 1000000, (unsigned)(t_us % 1000000), len);
+	write_hex(out, bytes, len);
+}
+
 int
 rec_hid_write(FILE *out, const struct rec_hid *r)
 {
 	int several = r->ndevices > 1;
 
-	/* each device's header, as hidraw.py's dump() writes it */
-	for (unsigned i = 0; i < r->ndevices; i++) {
-		const struct rec_hid_device *dev = &r->devices[i];
-		if (several)
-			fprintf(out, "D: %u\n", i);
-		fprintf(out, "# %s\n", dev->name);
-		fprintf(out, "R: %u", dev->desc_len);
-		write_hex(out, dev->desc, dev->desc_len);
-		fprintf(out, "N: %s\n", dev->name);
-		if (dev->phys[0])
-			fprintf(out, "P: %s\n", dev->phys);
-		fprintf(out, "I: %x %04x %04x\n", dev->bus, dev->vid, dev->pid);
-	}
+	/* each device's header */
+	for (unsigned i = 0; i < r->ndevices; i++)
+		rec_hid_write_device(out, &r->devices[i], several ? (int)i : -1);
 
 	/* the events, with D: when the device changes */
 	unsigned last = several ? REC_HID_MAX_DEVICES : 0;
@@ -394,9 +406,7 @@ rec_hid_write(FILE *out, const struct rec_hid *r)
 			fprintf(out, "D: %u\n", e->device);
 			last = e->device;
 		}
-		fprintf(out, "E: %06" PRIu64 ".%06u %u", e->t_us / 1000000,
-			(unsigned)(e->t_us % 1000000), e->len);
-		write_hex(out, e->bytes, e->len);
+		rec_hid_write_event(out, e->t_us, e->bytes, e->len);
 	}
 	return ferror(out) || fflush(out) ? -1 : 0;
 }

@@ -69,6 +69,15 @@ int rec_hid_read(const char *path, struct rec_hid *dest, char *err, size_t errle
 /* writes r to out in hid-recorder's format: 0, or -1 on a write error */
 int rec_hid_write(FILE *out, const struct rec_hid *r);
 
+/*
+ * The pieces of rec_hid_write, for a recorder writing as reports arrive:
+ * one device's header (preceded by "D: index" unless index is -1), and
+ * one E: line (a recording of several devices puts "D: n" before the
+ * lines of device n when it changes).
+ */
+void rec_hid_write_device(FILE *out, const struct rec_hid_device *dev, int index);
+void rec_hid_write_event(FILE *out, uint64_t t_us, const uint8_t *bytes, unsigned len);
+
 /* frees what r holds and leaves it empty */
 void rec_hid_free(struct rec_hid *r);
 

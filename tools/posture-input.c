@@ -32,6 +32,7 @@
 #include "devices/hid_desc.h"
 #include "devices/hid_input.h"
 #include "devices/hid_keymap.h"
+#include "devices/hidraw_dev.h"
 #include "devices/input_backends.h"
 #include "devices/input_devs.h"
 #include "devices/queue.h"
@@ -46,6 +47,8 @@ static const char usage[] =
 	"       posture-input decode --evemu FILE.hid\n"
 	"       posture-input record evdev:PATH [-o FILE] [--count N] [--seconds S] [--decode]\n"
 	"       posture-input record --fd N [...]   (tests: records from an inherited fd)\n"
+	"       posture-input record hidraw:VID:PID[:IFACE]|hidraw:PATH [-o FILE] [--count N]\n"
+	"                            [--seconds S] [--decode]\n"
 	"       posture-input list [SPEC...]\n"
 	"\n"
 	"describe: a HID report descriptor's input reports, fields, usages and bit offsets;\n"
@@ -63,6 +66,10 @@ static const char usage[] =
 	"  daemon's evdev backend makes of the events instead, as decode does for a file.\n"
 	"  --fd N reads struct input_event records from the inherited fd N (a pipe, socket or\n"
 	"  pty standing in for a device in tests) through the same backend, with no description.\n"
+	"record hidraw:...: the hidraw nodes of that mouse or keyboard (or that node) through\n"
+	"  the daemon's hidraw backend into a hid-recorder file: each device's descriptor, then\n"
+	"  its reports (E: lines, times from the first report; D: lines when several); --count\n"
+	"  counts reports. --decode prints the backend's events instead.\n"
 	"list: the devices the daemon would open for the --input SPECs (default auto) and\n"
 	"  what it would skip and why, without a daemon: index, backend, path, class, name.\n";
 
@@ -599,9 +606,14 @@ record_drain(struct input_queue *q, uint64_t t0, int print)
 	}
 }
 
+static int record_hidraw(int argc, char **argv);
+
 static int
 record(int argc, char **argv)
 {
+	for (int i = 0; i < argc; i++)
+		if (!strncmp(argv[i], "hidraw:", 7))
+			return record_hidraw(argc, argv);
 	struct record_opts o;
 	if (record_parse(argc, argv, &o))
 		return 2;
@@ -694,6 +706,202 @@ record(int argc, char **argv)
 	else
 		fflush(out);
 	return rc;
+}
+
+/* ---- record hidraw -------------------------------------------------------------- */
+
+/* what the tap of each recorded device writes into */
+struct record_hid_sink {
+	FILE *out;
+	int decode;           /* print events, not E: lines */
+	int several;          /* D: lines */
+	int last;             /* the device of the last E: line */
+	unsigned long count;  /* 0: no limit */
+	unsigned long written;
+	int first;
+	uint64_t t0;          /* the first report's time: hid-recorder's zero */
+};
+
+struct record_hid_tap {
+	struct record_hid_sink *sink;
+	int index;
+};
+
+static void
+record_hid_on_report(void *ctx, uint64_t t_us, const uint8_t *report, size_t n)
+{
+	struct record_hid_tap *tap = ctx;
+	struct record_hid_sink *k = tap->sink;
+	if (k->first) {
+		k->t0 = t_us;
+		k->first = 0;
+	}
+	if (k->count && k->written >= k->count)
+		return;
+	k->written++;
+	if (k->decode)
+		return;
+	if (k->several && tap->index != k->last) {
+		fprintf(k->out, "D: %d\n", tap->index);
+		k->last = tap->index;
+	}
+	rec_hid_write_event(k->out, t_us >= k->t0 ? t_us - k->t0 : 0, report, (unsigned)n);
+}
+
+/* the devices a hidraw spec names, opened into d[]: their count, or -1 with a message */
+static int
+record_hidraw_open(const char *spec, struct hidraw_dev *d, int max)
+{
+	char err[512];
+	uint16_t vid, pid;
+	int iface;
+	const char *path;
+	if (hidraw_dev_parse_spec(spec + 7, &vid, &pid, &iface, &path, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return -1;
+	}
+	static struct hidraw_dev_found found[HIDRAW_DEV_FOUND_MAX];
+	int n = 1;
+	if (path) {
+		snprintf(found[0].path, sizeof found[0].path, "%s", path);
+		found[0].iface = -1;
+	} else {
+		n = hidraw_dev_enumerate(vid, pid, iface, found, HIDRAW_DEV_FOUND_MAX, err,
+					 sizeof err);
+		if (n <= 0) {
+			fprintf(stderr, "posture-input: %s: %s\n", spec, err);
+			return -1;
+		}
+	}
+	int opened = 0;
+	for (int k = 0; k < n && opened < max; k++) {
+		if (hidraw_dev_open(&d[opened], found[k].path, found[k].iface, (uint16_t)opened, err,
+				    sizeof err) < 0) {
+			fprintf(stderr, "posture-input: %s\n", err);
+			continue;
+		}
+		opened++;
+	}
+	return opened ? opened : -1;
+}
+
+/* record hidraw:SPEC: a hid-recorder file (or, with --decode, the events) of its nodes */
+static int
+record_hidraw(int argc, char **argv)
+{
+	const char *spec = NULL, *outpath = NULL;
+	struct record_hid_sink sink = { .first = 1, .last = -1 };
+	double seconds = 0;
+	for (int i = 0; i < argc; i++) {
+		char *end;
+		if (!strncmp(argv[i], "hidraw:", 7) && !spec) {
+			spec = argv[i];
+		} else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
+			outpath = argv[++i];
+		} else if (!strcmp(argv[i], "--count") && i + 1 < argc) {
+			sink.count = strtoul(argv[++i], &end, 10);
+			if (*end || !sink.count)
+				goto usage;
+		} else if (!strcmp(argv[i], "--seconds") && i + 1 < argc) {
+			seconds = strtod(argv[++i], &end);
+			if (*end || !(seconds > 0))
+				goto usage;
+		} else if (!strcmp(argv[i], "--decode")) {
+			sink.decode = 1;
+		} else {
+			goto usage;
+		}
+	}
+
+	enum { MAXDEV = 8 };
+	static struct hidraw_dev d[MAXDEV];
+	static struct record_hid_tap taps[MAXDEV];
+	int n = record_hidraw_open(spec, d, MAXDEV);
+	if (n < 0)
+		return 1;
+	sink.out = stdout;
+	if (outpath && !(sink.out = fopen(outpath, "w"))) {
+		fprintf(stderr, "posture-input: %s: %s\n", outpath, strerror(errno));
+		for (int k = 0; k < n; k++)
+			hidraw_dev_close(&d[k], 0, NULL);
+		return 1;
+	}
+	sink.several = n > 1;
+	for (int k = 0; k < n; k++) {
+		taps[k] = (struct record_hid_tap){ .sink = &sink, .index = k };
+		d[k].tap = record_hid_on_report;
+		d[k].tap_ctx = &taps[k];
+		if (!sink.decode) {
+			static struct rec_hid_device rd;
+			hidraw_dev_describe(&d[k], &rd);
+			rec_hid_write_device(sink.out, &rd, sink.several ? k : -1);
+		}
+	}
+	fflush(sink.out);
+
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = record_on_signal;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+
+	static struct input_queue q;
+	input_queue_init(&q);
+	uint64_t start = record_now_us();
+	uint64_t limit = seconds > 0 ? (uint64_t)(seconds * 1e6) : 0;
+	int open_now = n, rc = 0;
+	while (!record_stop && open_now && (!sink.count || sink.written < sink.count)) {
+		uint64_t now = record_now_us();
+		if (limit && now - start >= limit)
+			break;
+		struct pollfd p[MAXDEV];
+		int map[MAXDEV], np = 0;
+		for (int k = 0; k < n; k++)
+			if (hidraw_dev_fd(&d[k]) >= 0) {
+				p[np] = (struct pollfd){ .fd = hidraw_dev_fd(&d[k]), .events = POLLIN };
+				map[np++] = k;
+			}
+		if (poll(p, (nfds_t)np, 100) < 0 && errno != EINTR)
+			break;
+		for (int j = 0; j < np; j++) {
+			if (!p[j].revents)
+				continue;
+			int k = map[j];
+			int got = hidraw_dev_read(&d[k], record_now_us(), &q);
+			record_drain(&q, sink.t0, sink.decode);
+			if (got < 0) {
+				fprintf(stderr, "posture-input: %s: the device went away\n", d[k].path);
+				hidraw_dev_close(&d[k], record_now_us(), NULL);
+				open_now--;
+				rc = 1;
+			}
+		}
+		fflush(sink.out);
+	}
+
+	uint64_t reads = 0, capped = 0;
+	for (int k = 0; k < n; k++) {
+		reads += d[k].reads;
+		capped += d[k].capped;
+	}
+	fprintf(stderr,
+		"posture-input: %lu reports in %llu reads (%llu stopped at the %d-report cap)\n",
+		sink.written, (unsigned long long)reads, (unsigned long long)capped,
+		HIDRAW_DEV_READ_MAX);
+	/* what is still held is released, as the daemon does */
+	for (int k = 0; k < n; k++)
+		hidraw_dev_close(&d[k], record_now_us(), &q);
+	record_drain(&q, sink.t0, sink.decode);
+	if (ferror(sink.out))
+		rc = 1;
+	if (sink.out != stdout)
+		fclose(sink.out);
+	else
+		fflush(sink.out);
+	return rc;
+usage:
+	fputs(usage, stderr);
+	return 2;
 }
 
 /* ---- list -------------------------------------------------------------------- */
