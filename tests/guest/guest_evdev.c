@@ -504,9 +504,24 @@ check_replay(const char *dir, const struct recording *rec)
 	ngot += drain(&q, got + ngot, MAXEV - ngot);
 	uint64_t t1 = mono_us();
 
+	/* the kernel passed every record unchanged (but its time), in order */
+	static struct input_event passed[MAXEV];
+	size_t nraw = 0, k;
+	ssize_t rn;
+	while (nraw < MAXEV && (rn = read(raw, passed + nraw, (MAXEV - nraw) * sizeof passed[0])) > 0)
+		nraw += (size_t)rn / sizeof passed[0];
+	for (k = 0; k < nraw && k < r.nev; k++)
+		if (passed[k].type != r.ev[k].type || passed[k].code != r.ev[k].code ||
+		    passed[k].value != r.ev[k].value)
+			break;
+	if (k != r.nev || nraw != r.nev) {
+		fail(what, "the kernel passed %zu records for the recording's %zu; first difference "
+		     "at %zu: %04x %04x %d", nraw, r.nev, k, k < nraw ? passed[k].type : 0,
+		     k < nraw ? passed[k].code : 0, k < nraw ? passed[k].value : 0);
+		goto out;
+	}
 	/* the same events, and times from the kernel's monotonic clock during the replay */
-	size_t k = 0;
-	for (; k < nwant && k < ngot; k++) {
+	for (k = 0; k < nwant && k < ngot; k++) {
 		const struct input_event_rec *a = &got[k], *b = &want[k];
 		if (a->kind != b->kind || a->code != b->code || a->value != b->value ||
 		    a->flags != b->flags || a->device != b->device || a->x != b->x || a->y != b->y)
@@ -519,22 +534,6 @@ check_replay(const char *dir, const struct recording *rec)
 		     got[k].code, got[k].value, got[k].x, got[k].y,
 		     k < nwant ? kind_name(want[k].kind) : "-", want[k].code, want[k].value,
 		     want[k].x, want[k].y);
-		goto out;
-	}
-	/* the kernel passed every record unchanged (but its time), in order */
-	static struct input_event passed[MAXEV];
-	size_t nraw = 0;
-	ssize_t rn;
-	while (nraw < MAXEV && (rn = read(raw, passed + nraw, (MAXEV - nraw) * sizeof passed[0])) > 0)
-		nraw += (size_t)rn / sizeof passed[0];
-	for (k = 0; k < nraw && k < r.nev; k++)
-		if (passed[k].type != r.ev[k].type || passed[k].code != r.ev[k].code ||
-		    passed[k].value != r.ev[k].value)
-			break;
-	if (k != r.nev || nraw != r.nev) {
-		fail(what, "the kernel passed %zu records for the recording's %zu; first difference "
-		     "at %zu: %04x %04x %d", nraw, r.nev, k, k < nraw ? passed[k].type : 0,
-		     k < nraw ? passed[k].code : 0, k < nraw ? passed[k].value : 0);
 		goto out;
 	}
 	uint64_t prev = t0;
