@@ -1005,6 +1005,70 @@ out:
 }
 
 /*
+ * The read cap against the kernel: 40 motion frames (REL_X k, REL_Y 1,
+ * SYN_REPORT: 120 records, within
+ * the mouse's 128-record client buffer) written with nothing read; the first
+ * evdev_dev_read takes EVDEV_DEV_READ_MAX (64) records, 21 frames and the
+ * start of the 22nd, and counts itself capped; the second takes the other 56
+ * and finishes the split frame; the third finds nothing. The events are the
+ * 40 motions written, in order.
+ */
+static void
+check_read_cap(const char *dir)
+{
+	const char *W = "read cap";
+	struct rec_evemu r;
+	if (load(dir, "mouse.evemu", &r) < 0)
+		return;
+	struct vdev v = { .fd = -1 };
+	char why[256];
+	struct evdev_dev d;
+	d.fd = -1;
+	if (vdev_make(&r, &v, why, sizeof why) < 0) {
+		fail(W, "%s", why);
+		goto out;
+	}
+	if (evdev_dev_open(&d, v.node, 0, 0, why, sizeof why) < 0) {
+		fail(W, "%s", why);
+		goto out;
+	}
+	struct input_event ev[3];
+	memset(ev, 0, sizeof ev);
+	ev[0].type = ev[1].type = EV_REL;
+	ev[0].code = REL_X;
+	ev[1].code = REL_Y;
+	ev[1].value = 1;
+	ev[2].type = EV_SYN;
+	for (int k = 1; k <= 40; k++) {
+		ev[0].value = k;
+		vdev_write(&v, ev, 3);
+	}
+	input_queue_init(&q);
+	int n1 = evdev_dev_read(&d, mono_us(), &q);
+	uint64_t capped1 = d.capped;
+	int n2 = evdev_dev_read(&d, mono_us(), &q);
+	int n3 = evdev_dev_read(&d, mono_us(), &q);
+	size_t n = drain(&q, got, MAXEV);
+	int motions = 0, in_order = 1;
+	for (size_t k = 0; k < n; k++)
+		if (got[k].kind == INPUT_MOTION)
+			in_order &= got[k].x == ++motions;
+	if (n1 != EVDEV_DEV_READ_MAX || capped1 != 1 || n2 != 120 - EVDEV_DEV_READ_MAX || n3 != 0)
+		fail(W, "reads took %d, %d, %d records (capped %llu), want %d, %d, 0 (capped 1)", n1,
+		     n2, n3, (unsigned long long)capped1, EVDEV_DEV_READ_MAX,
+		     120 - EVDEV_DEV_READ_MAX);
+	else if (motions != 40 || !in_order)
+		fail(W, "%d motions came out (in order: %d), want the 40 written", motions, in_order);
+	else
+		ok("read cap: 120 waiting records read as %d + %d (the first read capped), the 40 "
+		   "motions whole and in order across the split frame", n1, n2);
+out:
+	evdev_dev_close(&d, 0, NULL);
+	vdev_destroy(&v);
+	rec_evemu_free(&r);
+}
+
+/*
  * Unplug mid-drag: the left button down and the mouse moving, then the
  * uinput device destroyed. The set must release the button (INPUT_BUTTON
  * BTN_LEFT 0), queue INPUT_REMOVED, free the device's place, and log a line
@@ -1115,6 +1179,7 @@ run_checks(const char *dir)
 	check_grab(dir);
 	check_grab_held(dir);
 	check_syn_dropped(dir);
+	check_read_cap(dir);
 	check_unplug(dir);
 	printf("guest_evdev: %d failure%s\n", failures, failures == 1 ? "" : "s");
 	return failures > 100 ? 100 : failures;

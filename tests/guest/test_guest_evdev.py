@@ -69,6 +69,11 @@ def test_syn_dropped_resync(run):
     assert passed(lines, "SYN_DROPPED from a real overflow")
 
 
+def test_read_cap_splits_a_frame(run):
+    _, lines = run
+    assert passed(lines, "read cap:")
+
+
 def test_unplug_mid_drag(run):
     _, lines = run
     ok = passed(lines, "unplug mid-drag:")
