@@ -1005,13 +1005,88 @@ out:
 }
 
 /*
+ * SYN_DROPPED with more left after the drop than one read takes: the
+ * mouse's client buffer holds 128 records, so after an overflow up to 127
+ * wait, and evdev_dev_read takes 64 at a time. 122 motion frames (REL_X,
+ * SYN_REPORT) and then the left button's press are written unread: 246
+ * records, which leave the buffer holding SYN_DROPPED and the last 119 (the
+ * kernel keeps SYN_DROPPED and the newest record when it overflows, then
+ * fills up again). The press is the newest thing the device did, so no
+ * motion may come out after it: the key state EVIOCGKEY gives is the
+ * state after every record still waiting, and must not be applied before
+ * them.
+ */
+static void
+check_syn_dropped_tail(const char *dir)
+{
+	const char *W = "SYN_DROPPED, a long tail";
+	struct rec_evemu r;
+	if (load(dir, "mouse.evemu", &r) < 0)
+		return;
+	struct vdev v = { .fd = -1 };
+	char why[256], spec[96];
+	if (vdev_make(&r, &v, why, sizeof why) < 0) {
+		fail(W, "%s", why);
+		goto out;
+	}
+	input_queue_init(&q);
+	input_devs_init(&set, input_backends, input_backends_count, 0, &q);
+	snprintf(spec, sizeof spec, "evdev:%s", v.node);
+	if (input_devs_open(&set, spec, mono_us(), why, sizeof why) != 1) {
+		fail(W, "%s not opened: %s", spec, set.nskip ? set.skip[0].why : why);
+		goto out;
+	}
+	struct evdev_dev *d = set_dev(&set, set_place(&set, v.node));
+	drain(&q, got, MAXEV);
+	for (int k = 1; k <= 122; k++)
+		motion(&v, k);
+	struct input_event ev[2];
+	memset(ev, 0, sizeof ev);
+	ev[0].type = EV_KEY;
+	ev[0].code = BTN_LEFT;
+	ev[0].value = 1;
+	ev[1].type = EV_SYN;
+	vdev_write(&v, ev, 2);
+
+	uint64_t reads0 = d->reads, resyncs0 = d->resyncs;
+	pump(&set, 1000, 50);
+	size_t n = drain(&q, got, MAXEV);
+	int press = -1, after = 0, motions = 0;
+	for (size_t k = 0; k < n; k++) {
+		if (got[k].kind == INPUT_BUTTON && got[k].code == BTN_LEFT && got[k].value == 1)
+			press = (int)k;
+		if (got[k].kind == INPUT_MOTION) {
+			motions++;
+			after += press >= 0;
+		}
+	}
+	if (d->resyncs - resyncs0 != 1 || press < 0 || !evdev_input_key_down(&d->in, BTN_LEFT))
+		fail(W, "%llu resyncs, %llu drops, %llu reads, %zu events, the press at %d, BTN_LEFT "
+		     "believed %s", (unsigned long long)(d->resyncs - resyncs0),
+		     (unsigned long long)d->in.dropped_frames, (unsigned long long)(d->reads - reads0),
+		     n, press, evdev_input_key_down(&d->in, BTN_LEFT) ? "down" : "up");
+	else if (after)
+		fail(W, "%d of the %d motions the device sent before its press came out after it "
+		     "(the resync applied the key state before the records still waiting; %llu "
+		     "reads)", after, motions, (unsigned long long)(d->reads - reads0));
+	else
+		ok("SYN_DROPPED with a long tail: %d motions, then the press, in the device's order "
+		   "(%llu reads, 1 resync)", motions, (unsigned long long)(d->reads - reads0));
+out:
+	input_devs_close_all(&set, mono_us(), NULL);
+	vdev_destroy(&v);
+	rec_evemu_free(&r);
+}
+
+/*
  * The read cap against the kernel: 40 motion frames (REL_X k, REL_Y 1,
  * SYN_REPORT: 120 records, within
  * the mouse's 128-record client buffer) written with nothing read; the first
  * evdev_dev_read takes EVDEV_DEV_READ_MAX (64) records, 21 frames and the
  * start of the 22nd, and counts itself capped; the second takes the other 56
  * and finishes the split frame; the third finds nothing. The events are the
- * 40 motions written, in order.
+ * 40 motions written, in order. The counters start at 0 on memory that held
+ * something else.
  */
 static void
 check_read_cap(const char *dir)
@@ -1022,14 +1097,22 @@ check_read_cap(const char *dir)
 		return;
 	struct vdev v = { .fd = -1 };
 	char why[256];
-	struct evdev_dev d;
+	static struct evdev_dev d;
+	memset(&d, 0xa5, sizeof d); /* the counters must start at 0 whatever the memory held */
 	d.fd = -1;
+	d.evdev = NULL;
 	if (vdev_make(&r, &v, why, sizeof why) < 0) {
 		fail(W, "%s", why);
 		goto out;
 	}
 	if (evdev_dev_open(&d, v.node, 0, 0, why, sizeof why) < 0) {
 		fail(W, "%s", why);
+		goto out;
+	}
+	if (d.reads || d.capped || d.resyncs) {
+		fail(W, "evdev_dev_open left the counters at reads %llu capped %llu resyncs %llu",
+		     (unsigned long long)d.reads, (unsigned long long)d.capped,
+		     (unsigned long long)d.resyncs);
 		goto out;
 	}
 	struct input_event ev[3];
@@ -1179,6 +1262,7 @@ run_checks(const char *dir)
 	check_grab(dir);
 	check_grab_held(dir);
 	check_syn_dropped(dir);
+	check_syn_dropped_tail(dir);
 	check_read_cap(dir);
 	check_unplug(dir);
 	printf("guest_evdev: %d failure%s\n", failures, failures == 1 ? "" : "s");

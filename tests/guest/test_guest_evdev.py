@@ -69,6 +69,11 @@ def test_syn_dropped_resync(run):
     assert passed(lines, "SYN_DROPPED from a real overflow")
 
 
+def test_syn_dropped_resync_after_the_waiting_records(run):
+    _, lines = run
+    assert passed(lines, "SYN_DROPPED with a long tail")
+
+
 def test_read_cap_splits_a_frame(run):
     _, lines = run
     assert passed(lines, "read cap:")
