@@ -420,6 +420,53 @@ check_probe(const char *dir)
 }
 
 /*
+ * Whether evdev_dev_describe of the open device (what `posture-input
+ * record` writes) differs from the recording's description: name, id,
+ * properties, every type's codes but EV_SYN's (libevdev reports every SYN
+ * code, evemu-record what the kernel's bitmask says), the absolute axes and
+ * the LED and switch states. 0, or 1 with the first difference in why.
+ */
+static int
+describe_differs(const struct evdev_dev *d, const struct rec_evemu *r, char *why, size_t n)
+{
+	static struct rec_evemu got_desc;
+	evdev_dev_describe(d, &got_desc);
+	const struct rec_evemu *g = &got_desc;
+	if (strcmp(g->name, r->name) || g->bustype != r->bustype || g->vendor != r->vendor ||
+	    g->product != r->product || g->version != r->version) {
+		snprintf(why, n, "name or id: '%.60s' %04x:%04x:%04x:%04x", g->name, g->bustype,
+			 g->vendor, g->product, g->version);
+		return 1;
+	}
+	if (memcmp(g->props, r->props, sizeof g->props)) {
+		snprintf(why, n, "the properties");
+		return 1;
+	}
+	for (unsigned t = EV_SYN + 1; t < EV_CNT; t++)
+		for (unsigned c = 0; c < REC_EVEMU_MASK_BYTES * 8; c++)
+			if (bit_is_set(g->bits[t], c) != bit_is_set(r->bits[t], c)) {
+				snprintf(why, n, "type %u code %u: %s here, %s in the recording", t, c,
+					 bit_is_set(g->bits[t], c) ? "set" : "clear",
+					 bit_is_set(r->bits[t], c) ? "set" : "clear");
+				return 1;
+			}
+	for (unsigned c = 0; c < ABS_CNT; c++) {
+		const struct rec_evemu_abs *a = &g->abs[c], *b = &r->abs[c];
+		if (g->abs_given[c] != r->abs_given[c] || a->min != b->min || a->max != b->max ||
+		    a->fuzz != b->fuzz || a->flat != b->flat || a->res != b->res) {
+			snprintf(why, n, "axis %u: %d..%d fuzz %d flat %d res %d", c, a->min, a->max,
+				 a->fuzz, a->flat, a->res);
+			return 1;
+		}
+	}
+	if (memcmp(g->led, r->led, sizeof g->led) || memcmp(g->sw, r->sw, sizeof g->sw)) {
+		snprintf(why, n, "the LED or switch states");
+		return 1;
+	}
+	return 0;
+}
+
+/*
  * The recording's description as a uinput device, opened through the set
  * as evdev:NODE; its events written through uinput frame by frame, the set
  * pumped after each frame. What comes out must be what decoding the
@@ -459,6 +506,11 @@ check_replay(const char *dir, const struct recording *rec)
 	struct evdev_dev *d = set_dev(&set, i);
 	if (!d->monotonic)
 		fail(what, "EVIOCSCLOCKID(CLOCK_MONOTONIC) was refused");
+	if (describe_differs(d, &r, why, sizeof why))
+		fail(what, "the description the backend reads back differs: %s", why);
+	else
+		ok("%s: the description read back from the kernel (what `posture-input record` "
+		   "writes) is the recording's", what);
 
 	/* the reference: the recording's bytes through the decoder, offline */
 	struct evdev_input ref;

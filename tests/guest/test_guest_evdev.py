@@ -41,7 +41,9 @@ def test_probe_real_nodes(run):
 @pytest.mark.parametrize("rec", ["mouse", "keyboard", "tablet", "tablet-v1.0"])
 def test_replay_through_the_kernel(run, rec):
     _, lines = run
-    assert passed(lines, "replay %s.evemu:" % rec), "no ok line for the replay of " + rec
+    ok = passed(lines, "replay %s.evemu:" % rec)
+    assert any("passed its" in ln for ln in ok), "no ok line for the replay of " + rec
+    assert any("description read back" in ln for ln in ok), "no ok line for the description"
 
 
 def test_auto_picks_mouse_and_keyboard(run):
