@@ -193,10 +193,11 @@ $(PEER_BENCH): $(BUILD)/rel/bench/%: tools/bench/%.cpp | deps
 		-L$$P/lib -lpinocchio_default -lboost_serialization -Wl,-rpath,$$P/lib -o $@
 
 # C benchmarks that need no peer run on their own; the others are run by the
-# Python orchestrators (tools/bench/*.py), which measure ours and the peers
+# Python orchestrators (tools/bench/*.py), which measure ours and the peers (and
+# kernel_latency.py runs a guest program in the kernel tier's QEMU guest)
 BENCH_STANDALONE := $(BUILD)/rel/bench/ik_body $(BUILD)/rel/bench/behave_bench
 
-bench: deps $(rel_BENCH) $(rel_TOOLS) $(PEER_BENCH)
+bench: deps $(rel_BENCH) $(rel_TOOLS) $(rel_GUEST) $(PEER_BENCH)
 	@set -e; for b in $(BENCH_STANDALONE); do echo "== $$b"; $$b; done
 	@set -e; for b in $(wildcard tools/bench/*.py); do \
 		echo "== $$b"; POSTURE_BUILD=$(BUILD)/rel $(PY) $$b; done

@@ -3,6 +3,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <libevdev/libevdev.h>
+#include <poll.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,6 +94,7 @@ evdev_dev_open(struct evdev_dev *d, const char *path, uint16_t device, int grab,
 	memset(d, 0, offsetof(struct evdev_dev, buf));
 	d->fd = -1;
 	d->nlast = d->ntail = 0;
+	d->reads = d->capped = d->resyncs = 0; /* after buf: not cleared above */
 	struct libevdev *ev;
 	int fd = evdev_dev_open_described(path, &ev, &d->info, err, errlen);
 	if (fd < 0)
@@ -142,6 +144,7 @@ evdev_dev_adopt(struct evdev_dev *d, int fd, uint16_t device, const char *who, c
 	memset(d, 0, offsetof(struct evdev_dev, buf));
 	d->fd = -1;
 	d->nlast = d->ntail = 0;
+	d->reads = d->capped = d->resyncs = 0;
 	int flags = fcntl(fd, F_GETFL);
 	if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) < 0) {
 		snprintf(err, errlen, "fd %d: %s", fd, strerror(errno));
@@ -193,6 +196,31 @@ evdev_dev_gone(struct evdev_dev *d, uint64_t now_us, struct input_queue *q, int 
 	input_queue_push(q, &e);
 }
 
+/* after SYN_DROPPED: the kernel's key state put right; unknown (ioctl refused) means all up */
+static void
+evdev_dev_resync(struct evdev_dev *d, uint64_t now_us, struct input_queue *q)
+{
+	uint8_t keys[EVDEV_INPUT_KEYBITS];
+	memset(keys, 0, sizeof keys);
+	if (ioctl(d->fd, EVIOCGKEY(sizeof keys), keys) < 0) {
+		devlog(&d->in.log, now_us, DEVLOG_KERNEL,
+		       "cannot read the key state after dropped events (%s): "
+		       "every key and button released",
+		       strerror(errno));
+		memset(keys, 0, sizeof keys);
+	}
+	evdev_input_resync(&d->in, keys, now_us, q);
+	d->resyncs++;
+}
+
+/* 1 when records are waiting in the kernel's buffer for this fd */
+static int
+evdev_dev_waiting(const struct evdev_dev *d)
+{
+	struct pollfd p = { .fd = d->fd, .events = POLLIN };
+	return poll(&p, 1, 0) > 0 && (p.revents & POLLIN);
+}
+
 int
 evdev_dev_read(struct evdev_dev *d, uint64_t now_us, struct input_queue *q)
 {
@@ -206,8 +234,13 @@ evdev_dev_read(struct evdev_dev *d, uint64_t now_us, struct input_queue *q)
 	ssize_t n = read(d->fd, d->buf + d->ntail, want);
 	d->nlast = 0;
 	if (n < 0) {
-		if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)
+		if (errno == EINTR)
 			return 0;
+		if (errno == EAGAIN || errno == EWOULDBLOCK) {
+			if (d->in.resync_wanted) /* nothing left waiting: see below */
+				evdev_dev_resync(d, now_us, q);
+			return 0;
+		}
 		evdev_dev_gone(d, now_us, q, errno);
 		return -1;
 	}
@@ -226,20 +259,17 @@ evdev_dev_read(struct evdev_dev *d, uint64_t now_us, struct input_queue *q)
 		d->capped++;
 	evdev_input_feed(&d->in, d->buf, d->nlast, q);
 
-	/* after SYN_DROPPED: the kernel's key state; unknown (ioctl refused) means all up */
-	if (d->in.resync_wanted) {
-		uint8_t keys[EVDEV_INPUT_KEYBITS];
-		memset(keys, 0, sizeof keys);
-		if (ioctl(d->fd, EVIOCGKEY(sizeof keys), keys) < 0) {
-			devlog(&d->in.log, now_us, DEVLOG_KERNEL,
-			       "cannot read the key state after dropped events (%s): "
-			       "every key and button released",
-			       strerror(errno));
-			memset(keys, 0, sizeof keys);
-		}
-		evdev_input_resync(&d->in, keys, now_us, q);
-		d->resyncs++;
-	}
+	/*
+	 * after SYN_DROPPED: EVIOCGKEY gives the key state after every record
+	 * still waiting in the kernel's buffer (up to its size less one: 127 for
+	 * a mouse, more than one read takes), so it is applied once they are
+	 * decoded, or a press would come out before the motion that preceded it.
+	 * A capped read leaves the resync to the call that finds the buffer
+	 * empty; a record arriving between that and the ioctl is reflected early
+	 * (the decoder then ignores its repeat of the new state).
+	 */
+	if (d->in.resync_wanted && ((size_t)n < want || !evdev_dev_waiting(d)))
+		evdev_dev_resync(d, now_us, q);
 	return (int)(d->nlast / record_size);
 }
 

@@ -102,7 +102,9 @@ evdev_dev_fd(const struct evdev_dev *d);
  * Reads what the device has, at most EVDEV_DEV_READ_MAX records, and
  * feeds it to the decoder, which pushes the events of every frame that
  * ends into q; after a SYN_DROPPED the key state is read back (EVIOCGKEY)
- * and put right, all at now_us. Returns the records read (0: nothing
+ * and put right once no records are left waiting (the call whose read
+ * comes back short of the cap, or finds nothing), all at now_us. Returns
+ * the records read (0: nothing
  * waiting), or -1 when the device is gone (ENODEV or EIO, blamed on the
  * device; the end of the stream or another read error, on the kernel):
  * its keys and buttons were released as events, INPUT_REMOVED queued and
