@@ -16,6 +16,7 @@ import pytest
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import guest  # noqa: E402
+from tier import require_tier  # noqa: E402
 
 MODULES = "uinput,vcan,can_raw,uhid,usb_f_hid"
 EXPECTED = ("uinput device", "evdev EVIOCGRAB", "evdev EVIOCSCLOCKID",
@@ -26,17 +27,7 @@ EXPECTED = ("uinput device", "evdev EVIOCGRAB", "evdev EVIOCSCLOCKID",
 
 @pytest.fixture(scope="module")
 def tier():
-    if os.environ.get("POSTURE_GUEST") == "skip":
-        pytest.skip("kernel tier: POSTURE_GUEST=skip")
-    ok, why = guest.check()
-    if not ok and guest.fetchable():
-        try:
-            guest.fetch()
-        except guest.GuestError as e:
-            pytest.skip("kernel tier: %s" % e)
-        ok, why = guest.check()
-    if not ok:
-        pytest.skip("kernel tier: %s" % why)
+    require_tier()
 
 
 def test_guest_smoke(tier, tmp_path):
