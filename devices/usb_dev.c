@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "devices/devlog.h"
 #include "devices/input_devs.h"
@@ -159,10 +160,17 @@ usb_dev_hotplug(libusb_context *ctx, libusb_device *dev, libusb_hotplug_event ev
 	return 0; /* stay registered */
 }
 
-/* the context, made once: 0, or -1 with err */
+/*
+ * The context: 0, or -1 with err. Made once, except without udevd:
+ * libusb's device list then never changes after it starts (it hears of
+ * arrivals and departures only from udevd), so a context with no device
+ * open is made anew, and its first scan of sysfs sees what is there now.
+ */
 static int
 usb_dev_context(char *err, size_t errlen)
 {
+	if (usb.ctx && !usb.ndevs && access("/run/udev/control", F_OK) != 0)
+		usb_dev_exit();
 	if (usb.ctx)
 		return 0;
 	devlog_init(&usb.log, "usb");
@@ -657,10 +665,17 @@ usb_backend_open_spec(struct input_devs *s, const char *arg, char *err, size_t e
 		input_devs_skip(s, what, why);
 		return 0;
 	}
+	/*
+	 * the control requests below handle events too: the other devices'
+	 * reports that complete meanwhile go to the set's queue
+	 */
+	usb.q = s->q ? s->q : &usb_discard;
+	usb.now_us = s->now_us;
 	libusb_device **list;
 	ssize_t n = libusb_get_device_list(usb.ctx, &list);
 	if (n < 0) {
 		input_devs_skip(s, what, libusb_strerror((int)n));
+		usb.q = NULL;
 		return 0;
 	}
 	int opened = 0, found = 0;
@@ -713,6 +728,7 @@ usb_backend_open_spec(struct input_devs *s, const char *arg, char *err, size_t e
 		libusb_free_config_descriptor(cfg);
 	}
 	libusb_free_device_list(list, 1);
+	usb.q = NULL;
 	if (!found) {
 		char none[80];
 		if (want >= 0)
