@@ -2,7 +2,8 @@
 and a keyboard) on dummy_hcd, opened through libusb with usbhid set aside,
 reports compared with what the kernel's own evdev nodes said for them, the
 driver given back on close, an unplug mid-press, and a re-plug picked up by
-libusb's hot-plug callback (guest_usb.c says how).
+libusb's hot-plug callback (guest_usb.c says how), and one picked up by a
+rescan where no udevd runs.
 
 It skips, saying why, when the kernel tier cannot run or the program was not
 built (make all builds it into $POSTURE_BUILD/guest).
@@ -20,7 +21,7 @@ import guest  # noqa: E402
 
 EXPECTED = ("gadget 1d6b:0104 bound", "the kernel's meaning of 8 reports",
             "opened usb:1-1:0", "detach:", "usb reports: all 8 reports",
-            "re-attach:", "unplug mid-press:", "hot-plug:")
+            "re-attach:", "unplug mid-press:", "hot-plug:", "no udevd:")
 
 
 @pytest.fixture(scope="module")
