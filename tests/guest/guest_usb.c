@@ -633,6 +633,128 @@ open_spec(const char *spec)
 	return n;
 }
 
+/*
+ * A boot mouse whose descriptor our parser refuses (HID 1.11 B.2 with an
+ * extra array of 65 values, more than HID_DESC_MAX_ARRAY): it must run in
+ * boot protocol; the same descriptor on a non-boot interface is skipped.
+ */
+static const unsigned char refused_rdesc[] = {
+	0x05, 0x01, 0x09, 0x02, 0xa1, 0x01, 0x09, 0x01, 0xa1, 0x00, 0x05, 0x09, 0x19, 0x01,
+	0x29, 0x03, 0x15, 0x00, 0x25, 0x01, 0x95, 0x03, 0x75, 0x01, 0x81, 0x02, 0x95, 0x01,
+	0x75, 0x05, 0x81, 0x01, 0x05, 0x01, 0x09, 0x30, 0x09, 0x31, 0x15, 0x81, 0x25, 0x7f,
+	0x75, 0x08, 0x95, 0x02, 0x81, 0x06,
+	0x05, 0x09, 0x19, 0x01, 0x29, 0x01, 0x15, 0x00, 0x25, 0x01, 0x75, 0x01, 0x95, 0x41,
+	0x81, 0x00, /* Input (Data, Array): 65 values */
+	0xc0, 0xc0,
+};
+
+/* the /dev/hidgN of a gadget function, from its dev attribute (major:minor) */
+static int
+hidg_of(const char *function, char *dest, size_t n)
+{
+	char path[200], text[32] = "";
+	snprintf(path, sizeof path, GADGET "/functions/%s/dev", function);
+	FILE *f = fopen(path, "r");
+	unsigned major, minor;
+	if (!f)
+		return -1;
+	int got = fgets(text, sizeof text, f) && sscanf(text, "%u:%u", &major, &minor) == 2;
+	fclose(f);
+	if (!got)
+		return -1;
+	snprintf(dest, n, "/dev/hidg%u", minor);
+	return 0;
+}
+
+static void
+boot_fallback(void)
+{
+	const char *W = "boot fallback";
+	if (gadget_bind(0) < 0 || unlink(GADGET "/configs/c.1/hid.usb0") < 0 ||
+	    unlink(GADGET "/configs/c.1/hid.usb1") < 0) {
+		fail(W, "unbind and unlink: %s", strerror(errno));
+		return;
+	}
+	for (int t = 0; t < 150 && !access("/sys/bus/usb/devices/1-1", F_OK); t++)
+		sleep_ms(20); /* the host has let the old device go */
+	if ((mkdir(GADGET "/functions/hid.usb2", 0755) < 0 && errno != EEXIST) ||
+	    (mkdir(GADGET "/functions/hid.usb3", 0755) < 0 && errno != EEXIST) ||
+	    put_text(GADGET "/functions/hid.usb2/protocol", "2") ||
+	    put_text(GADGET "/functions/hid.usb2/subclass", "1") ||
+	    put_text(GADGET "/functions/hid.usb2/report_length", "12") ||
+	    put(GADGET "/functions/hid.usb2/report_desc", refused_rdesc, sizeof refused_rdesc) ||
+	    put_text(GADGET "/functions/hid.usb3/protocol", "0") ||
+	    put_text(GADGET "/functions/hid.usb3/subclass", "0") ||
+	    put_text(GADGET "/functions/hid.usb3/report_length", "12") ||
+	    put(GADGET "/functions/hid.usb3/report_desc", refused_rdesc, sizeof refused_rdesc) ||
+	    symlink(GADGET "/functions/hid.usb2", GADGET "/configs/c.1/hid.usb2") < 0 ||
+	    symlink(GADGET "/functions/hid.usb3", GADGET "/configs/c.1/hid.usb3") < 0 ||
+	    gadget_bind(1) < 0) {
+		fail(W, "the second gadget: %s", strerror(errno));
+		return;
+	}
+	char hidg[64];
+	if (hidg_of("hid.usb2", hidg, sizeof hidg) < 0) {
+		fail(W, "no dev attribute for hid.usb2");
+		return;
+	}
+	/* configured: interface 1 in sysfs is the new, non-boot one; then usbhid settles */
+	for (int t = 0; t < 250; t++) {
+		char sub[8] = "";
+		FILE *f = fopen("/sys/bus/usb/devices/1-1:1.1/bInterfaceSubClass", "r");
+		if (f) {
+			(void)!fgets(sub, sizeof sub, f);
+			fclose(f);
+		}
+		if (!strncmp(sub, "00", 2))
+			break;
+		sleep_ms(20);
+	}
+	sleep_ms(500);
+	input_devs_init(&set, backends, 1, 0, &q);
+	int n = open_spec("usb:" VID ":" PID);
+	int i0 = place_of(0);
+	const char *why1 = NULL;
+	for (int k = 0; k < set.nskip; k++)
+		if (!strcmp(set.skip[k].what, "usb:1-1:1"))
+			why1 = set.skip[k].why;
+	if (n != 1 || i0 < 0 || set.place[i0].info.cls != INPUT_CLASS_MOUSE)
+		fail(W, "opened %d interfaces, want the boot mouse alone", n);
+	else
+		ok("boot fallback: the refused descriptor's boot mouse opened (%s)",
+		   set.place[i0].info.path);
+	if (!why1 || !strstr(why1, "not a boot interface"))
+		fail(W, "interface 1 should be skipped as not a boot interface (%s)",
+		     why1 ? why1 : "not skipped");
+	else
+		ok("boot fallback: the non-boot interface skipped: %s", why1);
+	if (i0 < 0)
+		return;
+
+	/* boot reports (Appendix B.2): left down, +5 -5; then up */
+	int g = open(hidg, O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+	static const unsigned char down[3] = { 0x01, 0x05, 0xfb }, up[3] = { 0, 0, 0 };
+	int from = nseen;
+	if (g < 0 || gadget_write(g, down, 3, pump) < 0 || gadget_write(g, up, 3, pump) < 0) {
+		fail(W, "write %s: %s", hidg, strerror(errno));
+		if (g >= 0)
+			close(g);
+		return;
+	}
+	close(g);
+	for (int t = 0; t < 100 && !count_kind(from, i0, INPUT_BUTTON, BTN_LEFT, 0); t++)
+		pump(20);
+	int press = index_of(from, i0, INPUT_BUTTON, BTN_LEFT, 1);
+	int motion = index_of(from, i0, INPUT_MOTION, -1, -1);
+	int release = index_of(from, i0, INPUT_BUTTON, BTN_LEFT, 0);
+	if (press < 0 || motion < 0 || release < 0 || seen[motion].x != 5 || seen[motion].y != -5)
+		fail(W, "boot reports: press %d motion %d (%g %g) release %d", press, motion,
+		     motion >= 0 ? seen[motion].x : 0, motion >= 0 ? seen[motion].y : 0, release);
+	else
+		ok("boot fallback: boot reports read: BTN_LEFT 1, motion +5 -5, BTN_LEFT 0");
+	input_devs_close_all(&set, now_us(), &q);
+}
+
 int
 main(void)
 {
@@ -787,6 +909,7 @@ main(void)
 		fail("no udevd", "%d open before the rescans, %d after %d", before,
 		     input_devs_count(&set), rescans);
 	input_devs_close_all(&set, now_us(), &q);
+	boot_fallback();
 	if (usb_dev_exit() < 0)
 		fail("exit", "devices still open");
 out:
