@@ -8,7 +8,13 @@
  * /dev/hidg0 and /dev/hidg1 must mean the same through our decoder, and
  * closing must bring the kernel's nodes back (driver re-attached).
  * Last, the gadget is unbound mid-press: buttons and keys released, both
- * devices removed; bound again: opened again by the hot-plug callback.
+ * devices removed; bound again: opened again by the hot-plug callback,
+ * and with no udevd at all by a rescan. Then a descriptor our parser
+ * refuses (boot protocol on the boot mouse, the other interface skipped),
+ * and a hi-res wheel: the Resolution Multiplier feature we write must be
+ * the bytes usbhid wrote as it bound (the gadget, with no_out_endpoint,
+ * hands SET_REPORT data to read()), and the wheel must count as the
+ * kernel counts.
  *
  * The guest has no udevd, and Debian's libusb hears of devices coming and
  * going only from udevd (libudev's "udev" netlink group). So a child
@@ -755,6 +761,177 @@ boot_fallback(void)
 	input_devs_close_all(&set, now_us(), &q);
 }
 
+/*
+ * tests/input/hid/hires_wheel.rdesc (hand-written): a hi-res wheel (x8)
+ * and AC Pan (x4), each with a Resolution Multiplier feature, one 2-byte
+ * feature report without an id; 7-byte input reports
+ */
+static const unsigned char hires_rdesc[] = {
+	0x05, 0x01, 0x09, 0x02, 0xa1, 0x01, 0x09, 0x01, 0xa1, 0x00, 0x05, 0x09, 0x19, 0x01,
+	0x29, 0x05, 0x15, 0x00, 0x25, 0x01, 0x95, 0x05, 0x75, 0x01, 0x81, 0x02, 0x95, 0x01,
+	0x75, 0x03, 0x81, 0x01, 0x05, 0x01, 0x09, 0x30, 0x09, 0x31, 0x16, 0x01, 0x80, 0x26,
+	0xff, 0x7f, 0x75, 0x10, 0x95, 0x02, 0x81, 0x06, 0xa1, 0x02, 0x09, 0x48, 0x15, 0x00,
+	0x25, 0x01, 0x35, 0x01, 0x45, 0x08, 0x75, 0x02, 0x95, 0x01, 0xb1, 0x02, 0x35, 0x00,
+	0x45, 0x00, 0x75, 0x06, 0xb1, 0x01, 0x09, 0x38, 0x15, 0x81, 0x25, 0x7f, 0x75, 0x08,
+	0x95, 0x01, 0x81, 0x06, 0xc0, 0xa1, 0x02, 0x09, 0x48, 0x15, 0x00, 0x25, 0x01, 0x35,
+	0x01, 0x45, 0x04, 0x75, 0x02, 0x95, 0x01, 0xb1, 0x02, 0x35, 0x00, 0x45, 0x00, 0x75,
+	0x06, 0xb1, 0x01, 0x05, 0x0c, 0x0a, 0x38, 0x02, 0x15, 0x81, 0x25, 0x7f, 0x75, 0x08,
+	0x95, 0x01, 0x81, 0x06, 0xc0, 0xc0, 0xc0,
+};
+
+/* the SET_REPORT the gadget last took (no_out_endpoint: it is what read gives), or -1 */
+static ssize_t
+set_report_read(int fd, unsigned char *buf, size_t n, int ms)
+{
+	for (int t = 0; t <= ms; t += 20) {
+		ssize_t r = read(fd, buf, n);
+		if (r > 0)
+			return r;
+		pump(20);
+	}
+	return -1;
+}
+
+static void
+hex_text(const unsigned char *b, ssize_t n, char *dest, size_t len)
+{
+	dest[0] = '\0';
+	for (ssize_t k = 0; k < n && strlen(dest) + 4 < len; k++)
+		snprintf(dest + strlen(dest), len - strlen(dest), "%s%02x", k ? " " : "", b[k]);
+}
+
+/*
+ * The Resolution Multiplier: the feature report usbhid writes as it binds
+ * (hid-input sets every multiplier to its logical maximum) and the one we
+ * write must be the same bytes; and wheel reports must then count what
+ * the kernel's REL_WHEEL and REL_WHEEL_HI_RES count.
+ */
+static void
+multiplier(void)
+{
+	const char *W = "multiplier";
+	if (gadget_bind(0) < 0 || unlink(GADGET "/configs/c.1/hid.usb2") < 0 ||
+	    unlink(GADGET "/configs/c.1/hid.usb3") < 0) {
+		fail(W, "unbind and unlink: %s", strerror(errno));
+		return;
+	}
+	for (int t = 0; t < 150 && !access("/sys/bus/usb/devices/1-1", F_OK); t++)
+		sleep_ms(20);
+	/* f_hid has four minors: hid.usb0's (unlinked by now) is given back for this one */
+	if (rmdir(GADGET "/functions/hid.usb0") < 0 ||
+	    (mkdir(GADGET "/functions/hid.usb4", 0755) < 0 && errno != EEXIST) ||
+	    put_text(GADGET "/functions/hid.usb4/protocol", "0") ||
+	    put_text(GADGET "/functions/hid.usb4/subclass", "0") ||
+	    put_text(GADGET "/functions/hid.usb4/report_length", "7") ||
+	    put_text(GADGET "/functions/hid.usb4/no_out_endpoint", "1") ||
+	    put(GADGET "/functions/hid.usb4/report_desc", hires_rdesc, sizeof hires_rdesc) ||
+	    symlink(GADGET "/functions/hid.usb4", GADGET "/configs/c.1/hid.usb4") < 0) {
+		fail(W, "the third gadget: %s", strerror(errno));
+		return;
+	}
+	char hidg[64];
+	int g = -1, ev = -1;
+	if (gadget_bind(1) < 0 || hidg_of("hid.usb4", hidg, sizeof hidg) < 0) {
+		fail(W, "bind: %s", strerror(errno));
+		return;
+	}
+	for (int t = 0; t < 100 && g < 0; t++) /* the node comes with the bind */
+		if ((g = open(hidg, O_RDWR | O_NONBLOCK | O_CLOEXEC)) < 0)
+			sleep_ms(20);
+	if (g < 0) {
+		fail(W, "open %s: %s", hidg, strerror(errno));
+		return;
+	}
+	char event[64] = "";
+	for (int t = 0; t < 250 && !event[0]; t++) {
+		if (kernel_nodes(0, event, sizeof event) && event[0] && !access(event, R_OK))
+			break;
+		event[0] = '\0';
+		sleep_ms(20);
+	}
+	unsigned char kernel[64], ours[64];
+	ssize_t nk = set_report_read(g, kernel, sizeof kernel, 2000);
+	if (!event[0] || nk <= 0) {
+		fail(W, "usbhid bound %s, its SET_REPORT %zd bytes", event[0] ? event : "nothing",
+		     nk);
+		goto out;
+	}
+	/* the kernel's wheel: +1 then +7 eighths of a detent */
+	static const unsigned char one[7] = { 0, 0, 0, 0, 0, 0x01, 0 };
+	static const unsigned char seven[7] = { 0, 0, 0, 0, 0, 0x07, 0 };
+	long k_hi = 0, k_detents = 0;
+	if ((ev = open(event, O_RDONLY | O_NONBLOCK | O_CLOEXEC)) < 0) {
+		fail(W, "open %s: %s", event, strerror(errno));
+		goto out;
+	}
+	for (int r = 0; r < 2; r++) {
+		struct input_event ie;
+		int frames = 0;
+		for (int tries = 0; tries < 5 && !frames; tries++) {
+			if (gadget_write(g, r ? seven : one, 7, NULL) < 0)
+				break;
+			for (int t = 0; t < 50 && !frames; t++) {
+				struct pollfd p = { .fd = ev, .events = POLLIN };
+				if (poll(&p, 1, 20) <= 0)
+					continue;
+				while (read(ev, &ie, sizeof ie) == (ssize_t)sizeof ie) {
+					if (ie.type == EV_REL && ie.code == REL_WHEEL)
+						k_detents += ie.value;
+					else if (ie.type == EV_REL && ie.code == REL_WHEEL_HI_RES)
+						k_hi += ie.value;
+					else if (ie.type == EV_SYN && ie.code == SYN_REPORT)
+						frames++;
+				}
+			}
+			if (r > 0)
+				break; /* only the first report may be lost while polling starts */
+		}
+	}
+	close(ev);
+	ev = -1;
+
+	/* ours */
+	input_devs_init(&set, backends, 1, 0, &q);
+	if (open_spec("usb:" VID ":" PID) != 1) {
+		fail(W, "not opened");
+		goto out;
+	}
+	int i0 = place_of(0);
+	ssize_t no = set_report_read(g, ours, sizeof ours, 2000);
+	char kt[200], ot[200];
+	hex_text(kernel, nk, kt, sizeof kt);
+	hex_text(ours, no, ot, sizeof ot);
+	if (no != nk || memcmp(kernel, ours, (size_t)nk))
+		fail(W, "we wrote [%s], usbhid wrote [%s]", ot, kt);
+	else
+		ok("multiplier: the feature report we write is usbhid's own [%s]", kt);
+	int from = nseen;
+	if (gadget_write(g, one, 7, pump) < 0 || gadget_write(g, seven, 7, pump) < 0) {
+		fail(W, "write: %s", strerror(errno));
+		goto out;
+	}
+	long o_hi = 0, o_detents = 0;
+	for (int t = 0; t < 100 && count_kind(from, i0, INPUT_FRAME, -1, -1) < 2; t++)
+		pump(20);
+	for (int k = from; k < nseen; k++)
+		if (seen[k].device == i0 && seen[k].kind == INPUT_WHEEL &&
+		    seen[k].code == INPUT_WHEEL_V) {
+			o_hi += (long)seen[k].x;
+			o_detents += seen[k].value;
+		}
+	if (o_hi != k_hi || o_detents != k_detents || k_hi != 120)
+		fail(W, "wheel: ours %ld/120 and %ld detents, the kernel's %ld and %ld", o_hi,
+		     o_detents, k_hi, k_detents);
+	else
+		ok("multiplier: 1/8 + 7/8 of a detent: %ld/120 and %ld detent, as the kernel counts",
+		   o_hi, o_detents);
+	input_devs_close_all(&set, now_us(), &q);
+out:
+	if (ev >= 0)
+		close(ev);
+	close(g);
+}
+
 int
 main(void)
 {
@@ -910,6 +1087,7 @@ main(void)
 		     input_devs_count(&set), rescans);
 	input_devs_close_all(&set, now_us(), &q);
 	boot_fallback();
+	multiplier();
 	if (usb_dev_exit() < 0)
 		fail("exit", "devices still open");
 out:

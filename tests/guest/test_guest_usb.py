@@ -4,7 +4,8 @@ reports compared with what the kernel's own evdev nodes said for them, the
 driver given back on close, an unplug mid-press, and a re-plug picked up by
 libusb's hot-plug callback (guest_usb.c says how), and one picked up by a
 rescan where no udevd runs; last, a descriptor our parser refuses: boot
-protocol on a boot mouse, skipped elsewhere.
+protocol on a boot mouse, skipped elsewhere; and a hi-res wheel, whose
+Resolution Multiplier feature we must write as usbhid writes it.
 
 It skips, saying why, when the kernel tier cannot run or the program was not
 built (make all builds it into $POSTURE_BUILD/guest).
@@ -24,7 +25,8 @@ EXPECTED = ("gadget 1d6b:0104 bound", "the kernel's meaning of 8 reports",
             "opened usb:1-1:0", "detach:", "usb reports: all 8 reports",
             "re-attach:", "unplug mid-press:", "hot-plug:", "no udevd:",
             "boot fallback: the refused", "boot fallback: the non-boot",
-            "boot fallback: boot reports")
+            "boot fallback: boot reports", "multiplier: the feature report",
+            "multiplier: 1/8 + 7/8")
 
 
 @pytest.fixture(scope="module")
