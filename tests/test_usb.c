@@ -5,7 +5,8 @@
  * files tests/input/hid/make_expect.py writes) and the codes against
  * linux/input-event-codes.h; the boot report layout against HID 1.11
  * Appendix B. Also the spec's syntax, the backend's answer when the device
- * is not there, and the Resolution Multiplier lengths the backend writes.
+ * is not there, the Resolution Multiplier lengths the backend writes, and
+ * the device set opening its specs again after a backend noted an arrival.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -506,6 +507,83 @@ test_multiplier_feature_length(void **state)
 	expect_empty();
 }
 
+/* ---- the set's side of a hot-plug: a backend notes an arrival in its work ---- */
+
+static int fake_opens, fake_arrival_due, fake_noted;
+
+static int
+fake_open_spec(struct input_devs *s, const char *arg, char *err, size_t errlen)
+{
+	(void)s;
+	(void)arg;
+	(void)err;
+	(void)errlen;
+	fake_opens++;
+	return 0;
+}
+
+static int
+fake_shared_fds(struct pollfd *fds, int max)
+{
+	if (max < 1)
+		return 0;
+	fds[0] = (struct pollfd){ .fd = 0, .events = POLLIN };
+	return 1;
+}
+
+/* as libusb's hot-plug callback inside the event handling: only a note */
+static void
+fake_shared_work(uint64_t now_us, struct input_queue *q)
+{
+	(void)now_us;
+	(void)q;
+	fake_noted |= fake_arrival_due;
+	fake_arrival_due = 0;
+}
+
+static int
+fake_arrived(void)
+{
+	int a = fake_noted;
+	fake_noted = 0;
+	return a;
+}
+
+static const struct input_backend fake_backend = {
+	.name = "fake",
+	.usage = "fake:X",
+	.open_spec = fake_open_spec,
+	.shared_fds = fake_shared_fds,
+	.shared_work = fake_shared_work,
+	.arrived = fake_arrived,
+};
+
+static void
+test_set_rescans_after_arrival(void **state)
+{
+	(void)state;
+	static struct input_devs set;
+	static const struct input_backend *const backends[] = { &fake_backend };
+	char err[200];
+	input_queue_init(&queue);
+	input_devs_init(&set, backends, 1, 0, &queue);
+	fake_opens = fake_arrival_due = fake_noted = 0;
+	assert_int_equal(input_devs_open(&set, "fake:a", 0, err, sizeof err), 0);
+	assert_int_equal(fake_opens, 1);
+	struct pollfd fds[INPUT_DEVS_POLL_MAX];
+	int tags[INPUT_DEVS_POLL_MAX];
+	assert_int_equal(input_devs_pollfds(&set, fds, tags, INPUT_DEVS_POLL_MAX), 1);
+	/* work without an arrival: the specs stay as they are */
+	assert_int_equal(input_devs_ready(&set, tags[0], 10, &queue), 0);
+	assert_int_equal(fake_opens, 1);
+	/* an arrival noted in the work: the spec is opened again, once */
+	fake_arrival_due = 1;
+	assert_int_equal(input_devs_ready(&set, tags[0], 20, &queue), 0);
+	assert_int_equal(fake_opens, 2);
+	assert_int_equal(input_devs_ready(&set, tags[0], 30, &queue), 0);
+	assert_int_equal(fake_opens, 2);
+}
+
 int
 main(void)
 {
@@ -522,6 +600,7 @@ main(void)
 		cmocka_unit_test(test_spec),
 		cmocka_unit_test(test_open_absent_device),
 		cmocka_unit_test(test_multiplier_feature_length),
+		cmocka_unit_test(test_set_rescans_after_arrival),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
