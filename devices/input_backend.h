@@ -38,6 +38,14 @@ struct input_dev_info {
 	double dpi;                     /* counts per inch of a mouse (udev MOUSE_DPI, or 1000) */
 };
 
+/* what a device's reading has met, for `list devices` */
+struct input_dev_stats {
+	uint64_t reads;   /* reads that took something */
+	uint64_t capped;  /* ... that stopped at the backend's cap with more waiting (a flood) */
+	uint64_t resyncs; /* state read back after the kernel dropped events */
+	uint64_t errors;  /* reports or frames refused, transfer or bus errors */
+};
+
 struct input_backend {
 	const char *name;  /* "evdev": also the spec's prefix */
 	const char *usage; /* the spec's form, for error messages: "evdev:PATH" */
@@ -63,6 +71,9 @@ struct input_backend {
 
 	/* releases what the device held into q (NULL: nowhere), closes and frees it */
 	void (*close)(void *dev, uint64_t now_us, struct input_queue *q);
+
+	/* the device's counters into dest; NULL: it keeps none */
+	void (*stats)(const void *dev, struct input_dev_stats *dest);
 
 	/* takes (on) or gives up the kiosk grab: 0, or -1; NULL: not grabbable */
 	int (*set_grab)(void *dev, int on);

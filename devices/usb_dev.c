@@ -647,6 +647,18 @@ usb_backend_close(void *dev, uint64_t now_us, struct input_queue *q)
 	free(d);
 }
 
+/* a completed transfer is a read; what the device or the bus got wrong, errors */
+static void
+usb_backend_stats(const void *dev, struct input_dev_stats *dest)
+{
+	const struct usb_intr *u = &((const struct usb_dev *)dev)->u;
+	*dest = (struct input_dev_stats){
+		.reads = u->transfers,
+		.errors = u->stalls + u->errors + u->overflows + u->in.short_reports +
+			  u->in.long_reports + u->in.unknown_reports,
+	};
+}
+
 static int
 usb_backend_open_spec(struct input_devs *s, const char *arg, char *err, size_t errlen)
 {
@@ -774,6 +786,7 @@ const struct input_backend input_backend_usb = {
 	.fd = usb_backend_fd,
 	.read = usb_backend_read,
 	.close = usb_backend_close,
+	.stats = usb_backend_stats,
 	.shared_fds = usb_backend_shared_fds,
 	.shared_work = usb_backend_shared_work,
 	.arrived = usb_backend_arrived,
