@@ -371,7 +371,7 @@ usb_dev_put_bits(uint8_t *data, unsigned offset, unsigned size, uint32_t v)
  * report the device refuses takes its multipliers back to 1.
  */
 static void
-usb_dev_write_multipliers(struct usb_dev *d, struct hid_desc *desc, int numbered, uint64_t now_us)
+usb_dev_write_multipliers(struct usb_dev *d, struct hid_desc *desc, uint64_t now_us)
 {
 	int changed = 0;
 	for (unsigned m = 0; m < desc->nmultipliers; m++) {
@@ -381,12 +381,13 @@ usb_dev_write_multipliers(struct usb_dev *d, struct hid_desc *desc, int numbered
 			first &= desc->multipliers[k].report_id != id;
 		if (!first)
 			continue;
-		size_t bytes = (desc->multipliers[m].report_bits + 7) / 8 + (numbered ? 1 : 0);
+		/* a report with an id (never 0: HID 1.11 6.2.2.7) starts with it */
+		size_t bytes = (desc->multipliers[m].report_bits + 7) / 8 + (id ? 1 : 0);
 		uint8_t *buf = calloc(1, bytes ? bytes : 1);
 		if (!buf)
 			return;
-		uint8_t *data = buf + (numbered ? 1 : 0);
-		if (numbered)
+		uint8_t *data = buf + (id ? 1 : 0);
+		if (id)
 			buf[0] = (uint8_t)id;
 		for (unsigned k = m; k < desc->nmultipliers; k++)
 			if (desc->multipliers[k].report_id == id)
@@ -556,7 +557,7 @@ usb_dev_open_iface(struct usb_dev *d, libusb_device *dev, const struct libusb_de
 		       libusb_strerror(rc));
 	usb_intr_init(&d->u, &desc, boot_len, usb_dev_class(&desc), (uint16_t)i, who);
 	if (!boot_len)
-		usb_dev_write_multipliers(d, &d->u.desc, d->u.desc.numbered, now_us);
+		usb_dev_write_multipliers(d, &d->u.desc, now_us);
 
 	/* the transfer: the largest report, or a packet if that is larger */
 	int maxreport = 0;
