@@ -24,7 +24,13 @@
  * (shared_work): the callbacks decode into the queue shared_work was
  * given. A device gone shows as a transfer ending with NO_DEVICE; the
  * device's read, called by the set after the work, then releases what it
- * held, queues INPUT_REMOVED and returns -1.
+ * held, queues INPUT_REMOVED and returns -1. Nothing of ours allocates
+ * per report (the buffer and transfer are made at open); libusb's Linux
+ * backend itself callocs a URB array on every submission
+ * (os/linux_usbfs.c, submit_bulk_transfer), which we cannot avoid
+ * through its asynchronous API. libusb also runs one thread of its own,
+ * its udev monitor; that thread only posts to the context, whose events
+ * are handled here on the daemon's thread.
  *
  * Hot-plug: a libusb hot-plug callback (it runs inside the event
  * handling, so it only notes the arrival) makes `arrived` say 1 once,
