@@ -545,6 +545,16 @@ apply_multiplier(struct hid_desc *d, uint16_t where, int32_t effective)
 	}
 }
 
+void
+hid_desc_apply_multipliers(struct hid_desc *d)
+{
+	for (unsigned i = 0; i < d->nfields; i++)
+		d->fields[i].resolution_multiplier = 1;
+	/* hid_setup_resolution_multiplier: later multipliers override earlier */
+	for (unsigned m = 0; m < d->nmultipliers; m++)
+		apply_multiplier(d, d->multipliers[m].collection, d->multipliers[m].effective);
+}
+
 static void
 empty(struct hid_desc *d)
 {
@@ -630,10 +640,10 @@ hid_desc_parse(const uint8_t *bytes, size_t n, struct hid_desc *dest, char *err,
 			v += f->count;
 		}
 	}
-	/* hid_setup_resolution_multiplier: later multipliers override earlier */
 	for (unsigned m = 0; m < dest->nmultipliers; m++)
-		apply_multiplier(dest, dest->multipliers[m].collection,
-				 dest->multipliers[m].effective);
+		dest->multipliers[m].report_bits =
+			p.bits[REPORT_FEATURE][dest->multipliers[m].report_id];
+	hid_desc_apply_multipliers(dest);
 	return 0;
 
 bad:

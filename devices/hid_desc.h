@@ -128,6 +128,7 @@ struct hid_desc_multiplier {
 	int32_t logical_max;   /* the value the kernel sets (and we assume) */
 	int32_t effective;     /* the multiplier that value gives, 1 when unusable */
 	uint16_t collection;   /* the innermost collection it sits in */
+	uint32_t report_bits;  /* the whole feature report's data, to write it */
 };
 
 struct hid_desc {
@@ -162,6 +163,14 @@ int hid_desc_boot(enum hid_boot kind, struct hid_desc *dest);
  * NULL for an unknown kind.
  */
 const uint8_t *hid_desc_boot_bytes(enum hid_boot kind, size_t *n);
+
+/*
+ * Sets every input field's resolution_multiplier again from the
+ * multipliers' `effective` values, as hid_desc_parse does at its end: a
+ * backend whose device refused a multiplier sets that one's effective to
+ * 1 and calls this, so its wheels count whole detents again.
+ */
+void hid_desc_apply_multipliers(struct hid_desc *d);
 
 /*
  * The i-th usage of field f (page << 16 | id), as the kernel numbers them:

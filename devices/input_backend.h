@@ -83,6 +83,15 @@ struct input_backend {
 
 	/* the work a shared fd being ready (or a frame passing) asks for; NULL: none */
 	void (*shared_work)(uint64_t now_us, struct input_queue *q);
+
+	/*
+	 * 1 (said once) when a device has arrived since the last call that a
+	 * spec may name, so the set opens its specs again; NULL: never. A
+	 * backend learns of arrivals inside its shared work (libusb's hot-plug
+	 * callback runs inside the event handling, where nothing may be
+	 * opened); the set asks after the work and its reads are done.
+	 */
+	int (*arrived)(void);
 };
 
 #endif

@@ -3,10 +3,12 @@
 
 #include "devices/evdev_dev.h"
 #include "devices/hidraw_dev.h"
+#include "devices/usb_dev.h"
 
 const struct input_backend *const input_backends[] = {
 	&input_backend_evdev,
 	&input_backend_hidraw,
+	&input_backend_usb,
 };
 
 const int input_backends_count = (int)(sizeof input_backends / sizeof input_backends[0]);

@@ -194,6 +194,9 @@ input_devs_ready(struct input_devs *s, int tag, uint64_t now_us, struct input_qu
 	for (int i = 0; i < INPUT_DEVS_MAX; i++)
 		if (s->place[i].be == be && input_devs_read_place(s, i, now_us, q) < 0)
 			rc = -1;
+	/* a hot-plug noted in the work: the specs opened again, outside it */
+	if (be->arrived && be->arrived())
+		input_devs_rescan(s, now_us);
 	return rc;
 }
 

@@ -83,8 +83,9 @@ int input_devs_pollfds(const struct input_devs *s, struct pollfd *fds, int *tags
 /*
  * The fd tagged tag is ready: reads the device (a device that went away
  * released what it held, was reported removed and is closed: its place is
- * free again), or does the backend's shared work and reads its devices.
- * Returns 0, or -1 when a device went away.
+ * free again), or does the backend's shared work and reads its devices,
+ * then opens the specs again (input_devs_rescan) when the backend says a
+ * device arrived. Returns 0, or -1 when a device went away.
  */
 int input_devs_ready(struct input_devs *s, int tag, uint64_t now_us, struct input_queue *q);
 
