@@ -121,15 +121,17 @@ can_dev_open(struct can_dev *d, const char *iface, const struct can_map *map, ui
 
 int
 can_dev_adopt(struct can_dev *d, int fd, const struct can_map *map, uint16_t device,
-	      const char *who, char *err, size_t errlen)
+	      const char *iface, char *err, size_t errlen)
 {
+	char who[sizeof d->in.log.who];
+	snprintf(who, sizeof who, "panel (%.*s)", IF_NAMESIZE - 1, iface);
 	can_dev_init(d, map, device, who);
 	int flags = fcntl(fd, F_GETFL);
 	if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) < 0) {
 		snprintf(err, errlen, "fd %d: %s", fd, strerror(errno));
 		return -1;
 	}
-	snprintf(d->iface, sizeof d->iface, "%.*s", IF_NAMESIZE - 1, who);
+	snprintf(d->iface, sizeof d->iface, "%.*s", IF_NAMESIZE - 1, iface);
 	d->fd = fd;
 	return 0;
 }

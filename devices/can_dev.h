@@ -102,13 +102,13 @@ can_dev_open(struct can_dev *d, const char *iface, const struct can_map *map, ui
 
 /*
  * The test seam: takes fd (a SOCK_SEQPACKET socket standing in for the
- * CAN socket, whose datagrams a test writes) as can_dev_open takes an
- * interface, with no filters. The fd is made non-blocking and is d's from
- * then on. Returns 0, or -1 with the reason in err.
+ * CAN socket, whose datagrams a test writes) as can_dev_open takes the
+ * interface called iface, with no filters. The fd is made non-blocking and
+ * is d's from then on. Returns 0, or -1 with the reason in err.
  */
 int
 can_dev_adopt(struct can_dev *d, int fd, const struct can_map *map, uint16_t device,
-	      const char *who, char *err, size_t errlen);
+	      const char *iface, char *err, size_t errlen);
 
 /* the fd to poll for reading, or -1 when closed */
 int
