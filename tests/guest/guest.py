@@ -489,7 +489,7 @@ def run(binary, args=(), modules=(), timeout=120.0, files=(), exes=(),
                 shutil.copyfileobj(b, f)
             f.write(extra)   # the kernel unpacks concatenated archives
         t_pack = time.monotonic() - t0
-        cmd = [QEMU, "-accel", "tcg", "-m", str(memory), "-smp", "1",
+        cmd = [QEMU, "-accel", "tcg", "-cpu", "max", "-m", str(memory), "-smp", "1",
                "-nographic", "-no-reboot", "-nodefaults", "-serial", "stdio",
                "-kernel", vmlinuz, "-initrd", initrd,
                "-append", ("console=ttyS0 quiet panic=-1 oops=panic "
