@@ -26,6 +26,7 @@ can_dev_init(struct can_dev *d, const struct can_map *map, uint16_t device, cons
 	d->map = map;
 	d->recvmsg_fn = recvmsg;
 	can_input_init(&d->in, map, device, who);
+	devlog_init(&d->link_log, who);
 }
 
 /* a socket call failed: the reason into err, fd closed, -1 */
@@ -112,7 +113,7 @@ can_dev_open(struct can_dev *d, const char *iface, const struct can_map *map, ui
 	/* a bound socket on a down interface reads nothing until it is up: say so */
 	if (ioctl(fd, SIOCGIFFLAGS, &ifr) == 0 && !(ifr.ifr_flags & IFF_UP)) {
 		d->down = 1;
-		devlog(&d->in.log, 0, DEVLOG_DEVICE,
+		devlog(&d->link_log, 0, DEVLOG_DEVICE,
 		       "interface %s is down: frames will be read when it is up", iface);
 	}
 	d->fd = fd;
@@ -211,7 +212,7 @@ can_dev_went_silent(struct can_dev *d, uint64_t now_us, struct input_queue *q, c
 		return;
 	d->down = 1;
 	int released = d->map ? can_input_release_all(&d->in, now_us, q, 1) : 0;
-	devlog(&d->in.log, now_us, DEVLOG_DEVICE,
+	devlog(&d->link_log, now_us, DEVLOG_DEVICE,
 	       "%s: %d button(s) released, dials stale until frames come again", why, released);
 }
 
@@ -238,11 +239,11 @@ can_dev_gone(struct can_dev *d, uint64_t now_us, struct input_queue *q, int err)
 {
 	int released = d->map ? can_input_release_all(&d->in, now_us, q, 0) : 0;
 	if (err)
-		devlog(&d->in.log, now_us, err == ENODEV ? DEVLOG_DEVICE : DEVLOG_KERNEL,
+		devlog(&d->link_log, now_us, err == ENODEV ? DEVLOG_DEVICE : DEVLOG_KERNEL,
 		       "interface %s gone (%s); %d button(s) released", d->iface, strerror(err),
 		       released);
 	else
-		devlog(&d->in.log, now_us, DEVLOG_KERNEL,
+		devlog(&d->link_log, now_us, DEVLOG_KERNEL,
 		       "gone (end of the stream); %d button(s) released", released);
 	struct input_event_rec e = {
 		.t_us = now_us,
@@ -341,7 +342,7 @@ can_dev_read(struct can_dev *d, uint64_t now_us, struct input_queue *q)
 		/* a data frame: whatever silenced the panel is over */
 		if (d->down) {
 			d->down = 0;
-			devlog(&d->in.log, now_us, DEVLOG_DEVICE, "frames again on %s", d->iface);
+			devlog(&d->link_log, now_us, DEVLOG_DEVICE, "frames again on %s", d->iface);
 		}
 		if (d->map)
 			can_input_feed(&d->in, buf, CAN_INPUT_FRAME_SIZE, now_us, q);

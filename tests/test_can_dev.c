@@ -62,6 +62,7 @@ setup(void **state)
 	input_queue_init(&queue);
 	log_out = open_memstream(&logbuf, &loglen);
 	dev.in.log.out = log_out;
+	dev.link_log.out = log_out;
 	return 0;
 }
 
