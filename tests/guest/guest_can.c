@@ -181,6 +181,31 @@ play(const char *log, const char *what, struct can_dev *d, uint64_t frames_after
 		fail(what, "canplayer failed");
 }
 
+/*
+ * Waits until a socket receiving every frame (no filter: posture-input
+ * record's) is bound to vcan0, as the kernel's receive list shows it, so
+ * that nothing is played before the recorder listens. 0, or -1 after 30 s.
+ */
+static int
+wait_for_listener(void)
+{
+	for (int waited = 0; waited < 30000; waited += 50) {
+		FILE *f = fopen("/proc/net/can/rcvlist_all", "r");
+		char line[256];
+		int found = 0;
+		while (f && fgets(line, sizeof line, f))
+			found |= strstr(line, "vcan0") && !strstr(line, "no entry");
+		if (f)
+			fclose(f);
+		if (found) {
+			printf("recorder listening after %d ms\n", waited);
+			return 0;
+		}
+		pump(50, NULL, 0);
+	}
+	return -1;
+}
+
 static int
 raw_socket(void)
 {
@@ -275,7 +300,8 @@ main(int argc, char **argv)
 		char *rargv[] = { (char *)recorder, "record", "can:vcan0", "-o", "/tmp/rec.log",
 				  "--count", count, "--seconds", "60", NULL };
 		rec = spawn(rargv);
-		pump(4000, NULL, 0); /* time for it to start and bind: the guest is slow */
+		if (wait_for_listener() < 0)
+			fail("record", "posture-input did not bind to vcan0 in 30 s");
 	}
 	play(log2, "canplayer second half read after up", d, n1 + n2);
 	if (rec > 0) {
