@@ -12,8 +12,8 @@
  * vcan0 into a candump log; frames of ids outside the map are sent and
  * must never arrive (the kernel's filters); a bus-off error frame; a frame
  * of id 185 and then silence (its dial goes stale by the backend's timer
- * alone); vcan0 deleted (the device removed) and created again (a rescan
- * opens it again).
+ * alone); vcan0 deleted (the device removed) and created again, down (a
+ * rescan opens it again, and it reads once vcan0 is up).
  *
  * Every event the device set gives is printed, one a line:
  *   ev KIND CODE VALUE X FLAGS
@@ -368,12 +368,22 @@ main(int argc, char **argv)
 		fail("vcan0 deleted", "the device is still open");
 	else
 		ok("vcan0 deleted: the device removed");
+	/* created again, still down: a rescan opens it; frames are read once it is up */
 	mark("end");
-	if (sh("ip link add dev vcan0 type vcan") || sh("ip link set vcan0 up") ||
-	    input_devs_rescan(&set, now_us()) != 1 || !can_device())
+	if (sh("ip link add dev vcan0 type vcan") || input_devs_rescan(&set, now_us()) != 1 ||
+	    !(d = can_device())) {
 		fail("vcan0 again", "a rescan did not open it");
-	else
-		ok("vcan0 created again: a rescan opens it");
+	} else {
+		ok("vcan0 created again (down): a rescan opens it");
+		s = -1;
+		if (sh("ip link set vcan0 up") || (s = raw_socket()) < 0 ||
+		    send_frame(s, 0x185, "\x01\x00", 2) || pump(5000, &d->frames, 1) < 0)
+			fail("vcan0 up after the open", "no frame read");
+		else
+			ok("vcan0 up after the open: frames read");
+		if (s >= 0)
+			close(s);
+	}
 	input_devs_close_all(&set, now_us(), NULL);
 	printf("guest_can: %d failures\n", failures);
 	return failures > 100 ? 100 : failures;

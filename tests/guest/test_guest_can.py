@@ -184,7 +184,8 @@ def test_guest_can(tier, tmp_path):
                  "rescan opens vcan0 as a panel", "canplayer first half read",
                  "vcan0 down seen", "canplayer second half read after up",
                  "kernel filters", "vcan0 deleted: the device removed",
-                 "vcan0 created again: a rescan opens it"):
+                 "vcan0 created again (down): a rescan opens it",
+                 "vcan0 up after the open: frames read"):
         assert any(l.startswith("ok " + what) for l in out.splitlines()), "no 'ok %s'" % what
     assert p.returncode == 0
 
@@ -212,7 +213,8 @@ def test_guest_can(tier, tmp_path):
     # the log lines that say what happened, once each
     bus_off = "ok bus-off error frame counted" in out
     for said, times in (("interface vcan0 went down: ", 1),
-                        ("frames again on vcan0", 2 if bus_off else 1),
+                        ("interface vcan0 is down: frames will be read when it is up", 1),
+                        ("frames again on vcan0", 3 if bus_off else 2),
                         ("the bus is off (error frame: bus-off): ", 1 if bus_off else 0),
                         ("interface vcan0 gone (No such device)", 1)):
         assert out.count("posture: panel (vcan0): device fault: " + said) == times, said
