@@ -273,7 +273,7 @@ can_dev_cmsgs(struct can_dev *d, struct msghdr *msg, uint64_t now_us, uint64_t *
 				uint32_t more = dropped - d->rxq_ovfl;
 				d->kernel_dropped += more;
 				d->rxq_ovfl = dropped;
-				devlog(&d->in.log, now_us, DEVLOG_US,
+				devlog(&d->link_log, now_us, DEVLOG_US,
 				       "the kernel dropped %u frame(s): we read too slowly", more);
 			}
 		}

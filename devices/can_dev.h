@@ -65,7 +65,7 @@ struct can_dev {
 	char iface[IF_NAMESIZE];
 	const struct can_map *map;     /* NULL: every frame taken, none decoded (a recorder) */
 	struct can_input in;           /* the decoder; its log names the device */
-	struct devlog link_log;        /* down, up, bus-off, gone: never drowned by bad frames */
+	struct devlog link_log;        /* down, up, bus-off, gone, drops: not drowned by bad frames */
 	uint8_t down;                  /* the interface is down (or the bus off): nothing arrives */
 
 	/* the test seam for faults: recvmsg, or a test's stand-in */

@@ -183,7 +183,7 @@ def test_guest_can(tier, tmp_path):
     for what in ("missing interface skipped: no such CAN interface",
                  "rescan opens vcan0 as a panel", "canplayer first half read",
                  "vcan0 down seen", "canplayer second half read after up",
-                 "kernel filters", "vcan0 deleted: the device removed",
+                 "kernel filters", "overflow counted", "vcan0 deleted: the device removed",
                  "vcan0 created again (down): a rescan opens it",
                  "vcan0 up after the open: frames read"):
         assert any(l.startswith("ok " + what) for l in out.splitlines()), "no 'ok %s'" % what
@@ -200,7 +200,7 @@ def test_guest_can(tier, tmp_path):
     same_events(seg["down"], panel.silent(), "vcan0 down")
     want = [e for v in values[SPLIT:] for e in panel.frame(v)]
     same_events(seg["up"], want, "second half, after up")
-    assert seg["filters"] == []
+    assert seg["filters"] == [] and seg["overflow"] == []
     bus_off = "ok bus-off error frame counted" in out
     same_events(seg["busoff"], panel.silent() if bus_off else [], "bus-off")
     probe = len(lines) - 1
@@ -218,6 +218,7 @@ def test_guest_can(tier, tmp_path):
                         ("the bus is off (error frame: bus-off): ", 1 if bus_off else 0),
                         ("interface vcan0 gone (No such device)", 1)):
         assert out.count("posture: panel (vcan0): device fault: " + said) == times, said
+    assert "posture: panel (vcan0): bug: the kernel dropped " in out
 
     # the recording of the second half: the frames canplayer played, as python-can reads them
     rec = out.split("rec-begin\n", 1)[1].split("rec-end\n", 1)[0]
