@@ -110,8 +110,15 @@ can_dev_open(struct can_dev *d, const char *iface, const struct can_map *map, ui
 		return can_dev_fail(d, fd, err, errlen, "bind %s: %s", iface, strerror(e));
 	}
 
-	/* a bound socket on a down interface reads nothing until it is up: say so */
+	/*
+	 * a bound socket on a down interface reads nothing until it is up: say so
+	 * here, and take the ENETDOWN the kernel's bind left pending (SO_ERROR
+	 * clears it), so that the first read does not say it a second time
+	 */
 	if (ioctl(fd, SIOCGIFFLAGS, &ifr) == 0 && !(ifr.ifr_flags & IFF_UP)) {
+		int pending;
+		socklen_t len = sizeof pending;
+		getsockopt(fd, SOL_SOCKET, SO_ERROR, &pending, &len);
 		d->down = 1;
 		devlog(&d->link_log, 0, DEVLOG_DEVICE,
 		       "interface %s is down: frames will be read when it is up", iface);
@@ -204,12 +211,10 @@ can_dev_error_describe(const uint8_t frame[CAN_INPUT_FRAME_SIZE], char *dest, si
 	return (can_id & CAN_ERR_BUSOFF) != 0;
 }
 
-/* the panel can no longer be heard: buttons released, valuators stale, one line */
+/* the panel can no longer be heard: buttons released, valuators stale (once), one line */
 static void
 can_dev_went_silent(struct can_dev *d, uint64_t now_us, struct input_queue *q, const char *why)
 {
-	if (d->down)
-		return;
 	d->down = 1;
 	int released = d->map ? can_input_release_all(&d->in, now_us, q, 1) : 0;
 	devlog(&d->link_log, now_us, DEVLOG_DEVICE,
@@ -304,8 +309,7 @@ can_dev_read(struct can_dev *d, uint64_t now_us, struct input_queue *q)
 				break;
 			if (errno == ENETDOWN) {
 				/* the socket stays bound: reads resume when the interface is up */
-				if (!d->down)
-					d->downs++;
+				d->downs++;
 				char why[64];
 				snprintf(why, sizeof why, "interface %s went down", d->iface);
 				can_dev_went_silent(d, now_us, q, why);
