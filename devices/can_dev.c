@@ -1,4 +1,4 @@
-/* can_dev.c - the SocketCAN backend: CAN_RAW socket, filters, reads into the decoder (see can_dev.h) */
+/* can_dev.c - the SocketCAN backend: CAN_RAW socket, filters, reads into the decoder (can_dev.h) */
 #include <errno.h>
 #include <fcntl.h>
 #include <linux/can/raw.h>
