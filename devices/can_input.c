@@ -260,3 +260,36 @@ can_input_tick(struct can_input *c, uint64_t now_us, struct input_queue *q)
 	if (events)
 		push(c, q, now_us, INPUT_FRAME, 0, 0, 0, 0);
 }
+
+int
+can_input_release_all(struct can_input *c, uint64_t now_us, struct input_queue *q,
+		      int stale_valuators)
+{
+	const struct can_map *m = c->map;
+	int released = 0, events = 0;
+	for (int i = 0; m && i < m->n; i++) {
+		const struct can_map_line *l = &m->line[i];
+		switch ((enum can_map_kind)l->kind) {
+		case CAN_MAP_BUTTON:
+			if (c->pressed[i]) {
+				push(c, q, now_us, INPUT_BUTTON, 0, l->code, 0, 0);
+				c->pressed[i] = 0;
+				released++;
+				events++;
+			}
+			break;
+		case CAN_MAP_AXIS:
+		case CAN_MAP_MUX:
+			if (stale_valuators && c->seen[i] && !c->stale[i]) {
+				push(c, q, now_us, INPUT_VALUATOR, INPUT_F_STALE, (uint16_t)i, 0,
+				     c->value[i]);
+				c->stale[i] = 1;
+				events++;
+			}
+			break;
+		}
+	}
+	if (events)
+		push(c, q, now_us, INPUT_FRAME, 0, 0, 0, 0);
+	return released;
+}

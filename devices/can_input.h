@@ -74,6 +74,17 @@ int can_input_feed(struct can_input *c, const uint8_t *frame, size_t n, uint64_t
 void can_input_tick(struct can_input *c, uint64_t now_us, struct input_queue *q);
 
 /*
+ * The panel can no longer be heard (its interface went down, its bus went
+ * off, it is closing): every button it held is released (INPUT_BUTTON 0),
+ * and with stale_valuators every valuator seen and not yet stale is
+ * reported stale (INPUT_F_STALE, x its last value), so that the next frame
+ * reports each afresh. One INPUT_FRAME follows when anything was queued.
+ * Returns the buttons released.
+ */
+int can_input_release_all(struct can_input *c, uint64_t now_us, struct input_queue *q,
+			  int stale_valuators);
+
+/*
  * Every line of m that decodes from a frame of can_id (CAN_EFF_FLAG for an
  * extended id) with len data bytes: up to max of their indexes into
  * line_dest and values into value_dest, in map order. Returns how many

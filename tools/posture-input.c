@@ -8,6 +8,8 @@
  *   posture-input record evdev:PATH [-o FILE] [--count N] [--seconds S] [--decode]
  *                                        a real device into an evemu file (or, with
  *                                        --decode, through the backend's decoder)
+ *   posture-input record can:IFACE[:MAP] [-o FILE] [--count N] [--seconds S] [--decode]
+ *                                        a CAN interface into a candump -l log
  *
  * Recordings are read in the ecosystem's formats, told apart by their
  * content: evemu (evdev), hid-recorder (raw HID), candump -l (CAN; needs
@@ -25,6 +27,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "devices/can_dev.h"
 #include "devices/can_input.h"
 #include "devices/can_map.h"
 #include "devices/evdev_dev.h"
@@ -49,6 +52,7 @@ static const char usage[] =
 	"       posture-input record --fd N [...]   (tests: records from an inherited fd)\n"
 	"       posture-input record hidraw:VID:PID[:IFACE]|hidraw:PATH [-o FILE] [--count N]\n"
 	"                            [--seconds S] [--decode]\n"
+	"       posture-input record can:IFACE[:MAP] [-o FILE] [--count N] [--seconds S] [--decode]\n"
 	"       posture-input list [SPEC...]\n"
 	"\n"
 	"describe: a HID report descriptor's input reports, fields, usages and bit offsets;\n"
@@ -70,6 +74,9 @@ static const char usage[] =
 	"  the daemon's hidraw backend into a hid-recorder file: each device's descriptor, then\n"
 	"  its reports (E: lines, times from the first report; D: lines when several); --count\n"
 	"  counts reports. --decode prints the backend's events instead.\n"
+	"record can: the frames of a CAN interface into a candump -l log, as candump -l writes\n"
+	"  it (the kernel's receive times, wall clock); with MAP only the map's ids (the kernel\n"
+	"  filters the rest), and --decode prints the panel's events instead.\n"
 	"list: the devices the daemon would open for the --input SPECs (default auto) and\n"
 	"  what it would skip and why, without a daemon: index, backend, path, class, name.\n";
 
@@ -904,6 +911,141 @@ usage:
 	return 2;
 }
 
+/* ---- record can: a CAN interface into a candump -l log ---------------------------- */
+
+/* one frame of the last read as a candump -l line */
+static int
+record_can_write(FILE *out, const struct can_dev *d, int k)
+{
+	struct can_frame f;
+	memcpy(&f, d->frame[k], sizeof f);
+	struct rec_candump_frame line;
+	memset(&line, 0, sizeof line);
+	line.t_abs_us = d->stamp_us[k];
+	if (!line.t_abs_us) { /* no kernel time: the wall clock now, as candump falls back */
+		struct timespec ts;
+		clock_gettime(CLOCK_REALTIME, &ts);
+		line.t_abs_us = (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
+	}
+	snprintf(line.iface, sizeof line.iface, "%s", d->iface);
+	line.can_id = f.can_id;
+	line.len = f.len;
+	line.len8_dlc = f.len8_dlc;
+	memcpy(line.data, f.data, sizeof line.data);
+	struct rec_candump one = { .frames = &line, .n = 1 };
+	return rec_candump_write(out, &one);
+}
+
+/* the panel's events, times from the start, named by the map (NULL: not printed) */
+static void
+record_can_drain(struct input_queue *q, uint64_t t0, const struct can_map *map)
+{
+	struct input_event_rec e;
+	while (input_queue_pop(q, &e)) {
+		if (!map)
+			continue;
+		e.t_us = e.t_us >= t0 ? e.t_us - t0 : 0;
+		print_event(&e, map);
+	}
+}
+
+static int
+record_can(int argc, char **argv)
+{
+	/* can:IFACE[:MAP], then record's options */
+	const char *spec = argv[0] + 4;
+	char iface[IF_NAMESIZE];
+	const char *colon = strchr(spec, ':');
+	size_t len = colon ? (size_t)(colon - spec) : strlen(spec);
+	if (!len || len >= sizeof iface || (colon && !colon[1])) {
+		fputs(usage, stderr);
+		return 2;
+	}
+	memcpy(iface, spec, len);
+	iface[len] = 0;
+	/* record's options, parsed as for a device named by the interface */
+	struct record_opts o;
+	char *args[64];
+	int nargs = 0;
+	for (int i = 1; i < argc && nargs < 62; i++)
+		args[nargs++] = argv[i];
+	char evdev_like[IF_NAMESIZE + 8];
+	snprintf(evdev_like, sizeof evdev_like, "evdev:%s", iface);
+	args[nargs++] = evdev_like;
+	if (record_parse(nargs, args, &o))
+		return 2;
+
+	char err[512];
+	static struct can_map map;
+	if (colon && can_map_read(colon + 1, &map, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return 2;
+	}
+	static struct can_dev d;
+	if (can_dev_open(&d, iface, colon ? &map : NULL, 0, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-input: %s: %s\n", iface, err);
+		return 1;
+	}
+	FILE *out = stdout;
+	if (o.out && !(out = fopen(o.out, "w"))) {
+		fprintf(stderr, "posture-input: %s: %s\n", o.out, strerror(errno));
+		can_dev_close(&d, 0, NULL);
+		return 1;
+	}
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = record_on_signal;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+
+	static struct input_queue q;
+	input_queue_init(&q);
+	uint64_t start = record_now_us();
+	uint64_t limit = o.seconds > 0 ? (uint64_t)(o.seconds * 1e6) : 0;
+	unsigned long written = 0;
+	int rc = 0;
+	while (!record_stop && (!o.count || written < o.count)) {
+		uint64_t now = record_now_us();
+		if (limit && now - start >= limit)
+			break;
+		int wait_ms = 200;
+		if (limit && (limit - (now - start)) / 1000 < (uint64_t)wait_ms)
+			wait_ms = (int)((limit - (now - start)) / 1000) + 1;
+		struct pollfd p = { .fd = can_dev_fd(&d), .events = POLLIN };
+		if (poll(&p, 1, wait_ms) < 0) {
+			if (errno == EINTR)
+				continue;
+			fprintf(stderr, "posture-input: poll: %s\n", strerror(errno));
+			rc = 1;
+			break;
+		}
+		int n = can_dev_read(&d, record_now_us(), &q);
+		for (int k = 0; k < n && (!o.count || written < o.count); k++, written++)
+			if (!o.decode && record_can_write(out, &d, k) < 0)
+				rc = 1;
+		record_can_drain(&q, start, o.decode && colon ? &map : NULL);
+		fflush(out);
+		if (n < 0) {
+			fprintf(stderr, "posture-input: %s: the interface went away\n", iface);
+			rc = 1;
+			break;
+		}
+	}
+	fprintf(stderr, "posture-input: %lu frames in %llu reads (%llu error frames, %llu refused, "
+		"%llu dropped by the kernel)\n",
+		written, (unsigned long long)d.reads, (unsigned long long)d.error_frames,
+		(unsigned long long)d.bad_size, (unsigned long long)d.kernel_dropped);
+	can_dev_close(&d, record_now_us(), &q);
+	record_can_drain(&q, start, o.decode && colon ? &map : NULL);
+	if (ferror(out))
+		rc = 1;
+	if (out != stdout)
+		fclose(out);
+	else
+		fflush(out);
+	return rc;
+}
+
 /* ---- list -------------------------------------------------------------------- */
 
 static int
@@ -938,6 +1080,8 @@ main(int argc, char **argv)
 		return describe(argv[2]);
 	if (argc >= 3 && !strcmp(argv[1], "decode"))
 		return decode(argc - 2, argv + 2);
+	if (argc >= 3 && !strcmp(argv[1], "record") && !strncmp(argv[2], "can:", 4))
+		return record_can(argc - 2, argv + 2);
 	if (argc >= 3 && !strcmp(argv[1], "record"))
 		return record(argc - 2, argv + 2);
 	if (argc >= 2 && !strcmp(argv[1], "list"))

@@ -16,6 +16,7 @@
 #include "daemon/notify.h"
 #include "daemon/scene.h"
 #include "devices/input_backends.h"
+#include "devices/can_dev.h"
 #include "devices/escape_chord.h"
 #include "devices/hotplug.h"
 #include "devices/input_devs.h"
@@ -350,6 +351,11 @@ announce_devices(struct loop *L)
 		const struct input_devs_place *p = &L->devs.place[i];
 		fprintf(stderr, "postured: input %d: %s (%s, %s)\n", i, p->info.path, p->info.name,
 			p->be->name);
+		/* a panel's map names its dials in events, unless --panel gave one */
+		if (!L->d.panel && p->be == &input_backend_can && ((const struct can_dev *)p->dev)->map) {
+			L->panel = *((const struct can_dev *)p->dev)->map;
+			L->d.panel = &L->panel;
+		}
 	}
 }
 
