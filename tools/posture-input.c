@@ -530,6 +530,7 @@ record_now_us(void)
 }
 
 struct record_opts {
+	const char *spec;     /* the device spec as given: evdev:PATH, hidraw:..., can:... */
 	const char *path, *out;
 	int fd;               /* --fd: a test's stand-in for the device, or -1 */
 	unsigned long count;  /* 0: no limit */
@@ -564,7 +565,11 @@ record_parse(int argc, char **argv, struct record_opts *dest)
 		} else if (!strcmp(argv[i], "--decode")) {
 			dest->decode = 1;
 		} else if (!strncmp(argv[i], "evdev:", 6) && argv[i][6] && !dest->path) {
+			dest->spec = argv[i];
 			dest->path = argv[i] + 6;
+		} else if ((!strncmp(argv[i], "hidraw:", 7) || !strncmp(argv[i], "can:", 4)) &&
+			   strchr(argv[i], ':')[1] && !dest->path) {
+			dest->spec = dest->path = argv[i];
 		} else {
 			goto usage;
 		}
@@ -613,17 +618,81 @@ record_drain(struct input_queue *q, uint64_t t0, int print)
 	}
 }
 
-static int record_hidraw(int argc, char **argv);
+/* what every recorder shares: the output, the signals, the time limit, the status */
+struct record_session {
+	FILE *out;
+	uint64_t start, limit;
+	int rc;
+};
+
+/* opens the output (stdout when path is NULL) and arms SIGINT/SIGTERM; 0, or -1 said */
+static int
+record_begin(struct record_session *r, const char *path, double seconds)
+{
+	r->out = stdout;
+	r->rc = 0;
+	if (path && !(r->out = fopen(path, "w"))) {
+		fprintf(stderr, "posture-input: %s: %s\n", path, strerror(errno));
+		return -1;
+	}
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = record_on_signal;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+	r->start = record_now_us();
+	r->limit = seconds > 0 ? (uint64_t)(seconds * 1e6) : 0;
+	return 0;
+}
+
+/*
+ * Waits for the nfds fds (at most 200 ms, or the time left): 1 when one is
+ * ready, 0 to look again, -1 to stop (a signal, the time is up, poll failed).
+ */
+static int
+record_wait(struct record_session *r, struct pollfd *fds, int nfds)
+{
+	uint64_t now = record_now_us();
+	if (record_stop || (r->limit && now - r->start >= r->limit))
+		return -1;
+	int wait_ms = 200;
+	if (r->limit && (r->limit - (now - r->start)) / 1000 < (uint64_t)wait_ms)
+		wait_ms = (int)((r->limit - (now - r->start)) / 1000) + 1;
+	int n = poll(fds, (nfds_t)nfds, wait_ms);
+	if (n < 0 && errno != EINTR) {
+		fprintf(stderr, "posture-input: poll: %s\n", strerror(errno));
+		r->rc = 1;
+		return -1;
+	}
+	return n > 0;
+}
+
+/* closes the output; the session's status */
+static int
+record_end(struct record_session *r)
+{
+	if (ferror(r->out))
+		r->rc = 1;
+	if (r->out != stdout)
+		fclose(r->out);
+	else
+		fflush(r->out);
+	return r->rc;
+}
+
+static int record_hidraw(const struct record_opts *o);
+static int record_can(const struct record_opts *o);
 
 static int
 record(int argc, char **argv)
 {
-	for (int i = 0; i < argc; i++)
-		if (!strncmp(argv[i], "hidraw:", 7))
-			return record_hidraw(argc, argv);
 	struct record_opts o;
 	if (record_parse(argc, argv, &o))
 		return 2;
+	if (!strncmp(o.spec ? o.spec : "", "hidraw:", 7))
+		return record_hidraw(&o);
+	if (!strncmp(o.spec ? o.spec : "", "can:", 4))
+		return record_can(&o);
 
 	char err[512];
 	static struct evdev_dev d;
@@ -633,9 +702,8 @@ record(int argc, char **argv)
 		fprintf(stderr, "posture-input: %s\n", err);
 		return 1;
 	}
-	FILE *out = stdout;
-	if (o.out && !(out = fopen(o.out, "w"))) {
-		fprintf(stderr, "posture-input: %s: %s\n", o.out, strerror(errno));
+	struct record_session r;
+	if (record_begin(&r, o.out, o.seconds) < 0) {
 		evdev_dev_close(&d, 0, NULL);
 		return 1;
 	}
@@ -644,37 +712,19 @@ record(int argc, char **argv)
 	static struct rec_evemu desc;
 	if (!o.decode) {
 		evdev_dev_describe(&d, &desc);
-		rec_evemu_write(out, &desc);
-		fflush(out);
+		rec_evemu_write(r.out, &desc);
+		fflush(r.out);
 	}
-
-	struct sigaction sa;
-	memset(&sa, 0, sizeof sa);
-	sa.sa_handler = record_on_signal;
-	sigaction(SIGINT, &sa, NULL);
-	sigaction(SIGTERM, &sa, NULL);
 
 	static struct input_queue q;
 	input_queue_init(&q);
-	uint64_t start = record_now_us(), t0 = 0, last_ms = 0;
-	uint64_t limit = o.seconds > 0 ? (uint64_t)(o.seconds * 1e6) : 0;
+	uint64_t t0 = 0, last_ms = 0;
 	unsigned long written = 0;
-	int first = 1, rc = 0;
-	while (!record_stop && (!o.count || written < o.count)) {
-		uint64_t now = record_now_us();
-		if (limit && now - start >= limit)
-			break;
-		int wait_ms = 200;
-		if (limit && (limit - (now - start)) / 1000 < (uint64_t)wait_ms)
-			wait_ms = (int)((limit - (now - start)) / 1000) + 1;
+	int first = 1;
+	while (!o.count || written < o.count) {
 		struct pollfd p = { .fd = evdev_dev_fd(&d), .events = POLLIN };
-		if (poll(&p, 1, wait_ms) < 0) {
-			if (errno == EINTR)
-				continue;
-			fprintf(stderr, "posture-input: poll: %s\n", strerror(errno));
-			rc = 1;
+		if (record_wait(&r, &p, 1) < 0)
 			break;
-		}
 		int n = evdev_dev_read(&d, record_now_us(), &q);
 		for (int i = 0; i < n && (!o.count || written < o.count); i++, written++) {
 			const uint8_t *bytes = d.buf + (size_t)i * sizeof(struct input_event);
@@ -686,15 +736,15 @@ record(int argc, char **argv)
 					     (uint64_t)rec.input_event_usec;
 					first = 0;
 				}
-			} else if (record_write(out, bytes, &t0, &first, &last_ms) < 0) {
-				rc = 1;
+			} else if (record_write(r.out, bytes, &t0, &first, &last_ms) < 0) {
+				r.rc = 1;
 			}
 		}
 		record_drain(&q, t0, o.decode);
-		fflush(out);
+		fflush(r.out);
 		if (n < 0) {
 			fprintf(stderr, "posture-input: %s: the device went away\n", o.path);
-			rc = 1;
+			r.rc = 1;
 			break;
 		}
 	}
@@ -706,13 +756,7 @@ record(int argc, char **argv)
 	/* what is still held is released, as the daemon does */
 	evdev_dev_close(&d, record_now_us(), &q);
 	record_drain(&q, t0, o.decode);
-	if (ferror(out))
-		rc = 1;
-	if (out != stdout)
-		fclose(out);
-	else
-		fflush(out);
-	return rc;
+	return record_end(&r);
 }
 
 /* ---- record hidraw -------------------------------------------------------------- */
@@ -794,45 +838,23 @@ record_hidraw_open(const char *spec, struct hidraw_dev *d, int max)
 
 /* record hidraw:SPEC: a hid-recorder file (or, with --decode, the events) of its nodes */
 static int
-record_hidraw(int argc, char **argv)
+record_hidraw(const struct record_opts *o)
 {
-	const char *spec = NULL, *outpath = NULL;
-	struct record_hid_sink sink = { .first = 1, .last = -1 };
-	double seconds = 0;
-	for (int i = 0; i < argc; i++) {
-		char *end;
-		if (!strncmp(argv[i], "hidraw:", 7) && !spec) {
-			spec = argv[i];
-		} else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
-			outpath = argv[++i];
-		} else if (!strcmp(argv[i], "--count") && i + 1 < argc) {
-			sink.count = strtoul(argv[++i], &end, 10);
-			if (*end || !sink.count)
-				goto usage;
-		} else if (!strcmp(argv[i], "--seconds") && i + 1 < argc) {
-			seconds = strtod(argv[++i], &end);
-			if (*end || !(seconds > 0))
-				goto usage;
-		} else if (!strcmp(argv[i], "--decode")) {
-			sink.decode = 1;
-		} else {
-			goto usage;
-		}
-	}
-
+	struct record_hid_sink sink = { .first = 1, .last = -1, .count = o->count,
+					.decode = o->decode };
 	enum { MAXDEV = 8 };
 	static struct hidraw_dev d[MAXDEV];
 	static struct record_hid_tap taps[MAXDEV];
-	int n = record_hidraw_open(spec, d, MAXDEV);
+	int n = record_hidraw_open(o->spec, d, MAXDEV);
 	if (n < 0)
 		return 1;
-	sink.out = stdout;
-	if (outpath && !(sink.out = fopen(outpath, "w"))) {
-		fprintf(stderr, "posture-input: %s: %s\n", outpath, strerror(errno));
+	struct record_session r;
+	if (record_begin(&r, o->out, o->seconds) < 0) {
 		for (int k = 0; k < n; k++)
 			hidraw_dev_close(&d[k], 0, NULL);
 		return 1;
 	}
+	sink.out = r.out;
 	sink.several = n > 1;
 	for (int k = 0; k < n; k++) {
 		taps[k] = (struct record_hid_tap){ .sink = &sink, .index = k };
@@ -846,21 +868,10 @@ record_hidraw(int argc, char **argv)
 	}
 	fflush(sink.out);
 
-	struct sigaction sa;
-	memset(&sa, 0, sizeof sa);
-	sa.sa_handler = record_on_signal;
-	sigaction(SIGINT, &sa, NULL);
-	sigaction(SIGTERM, &sa, NULL);
-
 	static struct input_queue q;
 	input_queue_init(&q);
-	uint64_t start = record_now_us();
-	uint64_t limit = seconds > 0 ? (uint64_t)(seconds * 1e6) : 0;
-	int open_now = n, rc = 0;
-	while (!record_stop && open_now && (!sink.count || sink.written < sink.count)) {
-		uint64_t now = record_now_us();
-		if (limit && now - start >= limit)
-			break;
+	int open_now = n;
+	while (open_now && (!sink.count || sink.written < sink.count)) {
 		struct pollfd p[MAXDEV];
 		int map[MAXDEV], np = 0;
 		for (int k = 0; k < n; k++)
@@ -868,7 +879,7 @@ record_hidraw(int argc, char **argv)
 				p[np] = (struct pollfd){ .fd = hidraw_dev_fd(&d[k]), .events = POLLIN };
 				map[np++] = k;
 			}
-		if (poll(p, (nfds_t)np, 100) < 0 && errno != EINTR)
+		if (record_wait(&r, p, np) < 0)
 			break;
 		for (int j = 0; j < np; j++) {
 			if (!p[j].revents)
@@ -880,7 +891,7 @@ record_hidraw(int argc, char **argv)
 				fprintf(stderr, "posture-input: %s: the device went away\n", d[k].path);
 				hidraw_dev_close(&d[k], record_now_us(), NULL);
 				open_now--;
-				rc = 1;
+				r.rc = 1;
 			}
 		}
 		fflush(sink.out);
@@ -899,16 +910,7 @@ record_hidraw(int argc, char **argv)
 	for (int k = 0; k < n; k++)
 		hidraw_dev_close(&d[k], record_now_us(), &q);
 	record_drain(&q, sink.t0, sink.decode);
-	if (ferror(sink.out))
-		rc = 1;
-	if (sink.out != stdout)
-		fclose(sink.out);
-	else
-		fflush(sink.out);
-	return rc;
-usage:
-	fputs(usage, stderr);
-	return 2;
+	return record_end(&r);
 }
 
 /* ---- record can: a CAN interface into a candump -l log ---------------------------- */
@@ -950,30 +952,19 @@ record_can_drain(struct input_queue *q, uint64_t t0, const struct can_map *map)
 }
 
 static int
-record_can(int argc, char **argv)
+record_can(const struct record_opts *o)
 {
-	/* can:IFACE[:MAP], then record's options */
-	const char *spec = argv[0] + 4;
+	/* can:IFACE[:MAP] */
+	const char *spec = o->spec + 4;
 	char iface[IF_NAMESIZE];
 	const char *colon = strchr(spec, ':');
 	size_t len = colon ? (size_t)(colon - spec) : strlen(spec);
-	if (!len || len >= sizeof iface || (colon && !colon[1])) {
+	if (!len || len >= sizeof iface || (colon && !colon[1]) || o->fd >= 0) {
 		fputs(usage, stderr);
 		return 2;
 	}
 	memcpy(iface, spec, len);
 	iface[len] = 0;
-	/* record's options, parsed as for a device named by the interface */
-	struct record_opts o;
-	char *args[64];
-	int nargs = 0;
-	for (int i = 1; i < argc && nargs < 62; i++)
-		args[nargs++] = argv[i];
-	char evdev_like[IF_NAMESIZE + 8];
-	snprintf(evdev_like, sizeof evdev_like, "evdev:%s", iface);
-	args[nargs++] = evdev_like;
-	if (record_parse(nargs, args, &o))
-		return 2;
 
 	char err[512];
 	static struct can_map map;
@@ -986,48 +977,29 @@ record_can(int argc, char **argv)
 		fprintf(stderr, "posture-input: %s: %s\n", iface, err);
 		return 1;
 	}
-	FILE *out = stdout;
-	if (o.out && !(out = fopen(o.out, "w"))) {
-		fprintf(stderr, "posture-input: %s: %s\n", o.out, strerror(errno));
+	struct record_session r;
+	if (record_begin(&r, o->out, o->seconds) < 0) {
 		can_dev_close(&d, 0, NULL);
 		return 1;
 	}
-	struct sigaction sa;
-	memset(&sa, 0, sizeof sa);
-	sa.sa_handler = record_on_signal;
-	sigaction(SIGINT, &sa, NULL);
-	sigaction(SIGTERM, &sa, NULL);
 
 	static struct input_queue q;
 	input_queue_init(&q);
-	uint64_t start = record_now_us();
-	uint64_t limit = o.seconds > 0 ? (uint64_t)(o.seconds * 1e6) : 0;
 	unsigned long written = 0;
-	int rc = 0;
-	while (!record_stop && (!o.count || written < o.count)) {
-		uint64_t now = record_now_us();
-		if (limit && now - start >= limit)
-			break;
-		int wait_ms = 200;
-		if (limit && (limit - (now - start)) / 1000 < (uint64_t)wait_ms)
-			wait_ms = (int)((limit - (now - start)) / 1000) + 1;
+	const struct can_map *names = o->decode && colon ? &map : NULL;
+	while (!o->count || written < o->count) {
 		struct pollfd p = { .fd = can_dev_fd(&d), .events = POLLIN };
-		if (poll(&p, 1, wait_ms) < 0) {
-			if (errno == EINTR)
-				continue;
-			fprintf(stderr, "posture-input: poll: %s\n", strerror(errno));
-			rc = 1;
+		if (record_wait(&r, &p, 1) < 0)
 			break;
-		}
 		int n = can_dev_read(&d, record_now_us(), &q);
-		for (int k = 0; k < n && (!o.count || written < o.count); k++, written++)
-			if (!o.decode && record_can_write(out, &d, k) < 0)
-				rc = 1;
-		record_can_drain(&q, start, o.decode && colon ? &map : NULL);
-		fflush(out);
+		for (int k = 0; k < n && (!o->count || written < o->count); k++, written++)
+			if (!o->decode && record_can_write(r.out, &d, k) < 0)
+				r.rc = 1;
+		record_can_drain(&q, r.start, names);
+		fflush(r.out);
 		if (n < 0) {
 			fprintf(stderr, "posture-input: %s: the interface went away\n", iface);
-			rc = 1;
+			r.rc = 1;
 			break;
 		}
 	}
@@ -1036,14 +1008,8 @@ record_can(int argc, char **argv)
 		written, (unsigned long long)d.reads, (unsigned long long)d.error_frames,
 		(unsigned long long)d.bad_size, (unsigned long long)d.kernel_dropped);
 	can_dev_close(&d, record_now_us(), &q);
-	record_can_drain(&q, start, o.decode && colon ? &map : NULL);
-	if (ferror(out))
-		rc = 1;
-	if (out != stdout)
-		fclose(out);
-	else
-		fflush(out);
-	return rc;
+	record_can_drain(&q, r.start, names);
+	return record_end(&r);
 }
 
 /* ---- list -------------------------------------------------------------------- */
@@ -1080,8 +1046,6 @@ main(int argc, char **argv)
 		return describe(argv[2]);
 	if (argc >= 3 && !strcmp(argv[1], "decode"))
 		return decode(argc - 2, argv + 2);
-	if (argc >= 3 && !strcmp(argv[1], "record") && !strncmp(argv[2], "can:", 4))
-		return record_can(argc - 2, argv + 2);
 	if (argc >= 3 && !strcmp(argv[1], "record"))
 		return record(argc - 2, argv + 2);
 	if (argc >= 2 && !strcmp(argv[1], "list"))
