@@ -41,33 +41,10 @@
 #include "devices/can_dev.h"
 #include "devices/input_backends.h"
 #include "devices/input_devs.h"
+#include "tests/guest/guest_check.h"
 
-static int failures;
 static struct input_devs set;
 static struct input_queue queue;
-
-static void
-ok(const char *what)
-{
-	printf("ok %s\n", what);
-	fflush(stdout);
-}
-
-static void
-fail(const char *what, const char *why)
-{
-	printf("FAIL %s: %s\n", what, why);
-	fflush(stdout);
-	failures++;
-}
-
-static uint64_t
-now_us(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
-}
 
 static void
 mark(const char *what)
@@ -154,8 +131,7 @@ reap(pid_t pid, int ms)
 		int st;
 		if (waitpid(pid, &st, WNOHANG) == pid)
 			return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-		struct timespec ts = { 0, 20000000L };
-		nanosleep(&ts, NULL);
+		sleep_ms(20);
 	}
 	kill(pid, SIGKILL);
 	waitpid(pid, NULL, 0);
@@ -168,15 +144,12 @@ play(const char *log, const char *what, struct can_dev *d, uint64_t frames_after
 {
 	char *argv[] = { "canplayer", "-I", (char *)log, "vcan0=can0", NULL };
 	pid_t pid = spawn(argv);
-	char why[200];
-	if (pump(60000, &d->frames, frames_after) < 0) {
-		snprintf(why, sizeof why, "%llu frames read, want %llu (kernel dropped %llu)",
-			 (unsigned long long)d->frames, (unsigned long long)frames_after,
-			 (unsigned long long)d->kernel_dropped);
-		fail(what, why);
-	} else {
-		ok(what);
-	}
+	if (pump(60000, &d->frames, frames_after) < 0)
+		fail(what, "%llu frames read, want %llu (kernel dropped %llu)",
+		     (unsigned long long)d->frames, (unsigned long long)frames_after,
+		     (unsigned long long)d->kernel_dropped);
+	else
+		ok("%s", what);
 	if (reap(pid, 30000) != 0)
 		fail(what, "canplayer failed");
 }
@@ -248,13 +221,11 @@ main(int argc, char **argv)
 
 	/* no vcan0 yet: skipped, with the reason */
 	if (input_devs_open(&set, spec, now_us(), err, sizeof err) != 0 || set.nskip != 1 ||
-	    strcmp(set.skip[0].why, "no such CAN interface")) {
-		snprintf(why, sizeof why, "nskip %d: %s", set.nskip,
-			 set.nskip ? set.skip[0].why : err);
-		fail("missing interface skipped", why);
-	} else {
+	    strcmp(set.skip[0].why, "no such CAN interface"))
+		fail("missing interface skipped", "nskip %d: %s", set.nskip,
+		     set.nskip ? set.skip[0].why : err);
+	else
 		ok("missing interface skipped: no such CAN interface");
-	}
 
 	/* vcan0 appears: a rescan opens it */
 	if (sh("ip link add dev vcan0 type vcan") || sh("ip link set vcan0 up")) {
@@ -262,8 +233,7 @@ main(int argc, char **argv)
 		return 100;
 	}
 	if (input_devs_rescan(&set, now_us()) != 1 || !can_device()) {
-		snprintf(why, sizeof why, "nothing opened (%s)", set.nskip ? set.skip[0].why : "");
-		fail("rescan opens vcan0", why);
+		fail("rescan opens vcan0", "nothing opened (%s)", set.nskip ? set.skip[0].why : "");
 		return 100;
 	}
 	struct can_dev *d = can_device();
@@ -306,10 +276,8 @@ main(int argc, char **argv)
 	play(log2, "canplayer second half read after up", d, n1 + n2);
 	if (rec > 0) {
 		int st = reap(rec, 20000);
-		if (st != 0) {
-			snprintf(why, sizeof why, "posture-input record exited %d", st);
-			fail("record", why);
-		}
+		if (st != 0)
+			fail("record", "posture-input record exited %d", st);
 		FILE *f = fopen("/tmp/rec.log", "r");
 		char line[256];
 		printf("rec-begin\n");
@@ -358,9 +326,9 @@ main(int argc, char **argv)
 			 (unsigned long long)sent, (unsigned long long)got,
 			 (unsigned long long)d->kernel_dropped);
 		if (d->kernel_dropped == 0 || got + d->kernel_dropped != sent)
-			fail("overflow counted", why);
+			fail("overflow counted", "%s", why);
 		else
-			printf("ok overflow counted: %s\n", why);
+			ok("overflow counted: %s", why);
 	}
 
 	/* bus-off, as a controller would send it */
@@ -407,6 +375,6 @@ main(int argc, char **argv)
 			close(s);
 	}
 	input_devs_close_all(&set, now_us(), NULL);
-	printf("guest_can: %d failures\n", failures);
-	return failures > 100 ? 100 : failures;
+	printf("guest_can: %d failures\n", guest_failures);
+	return guest_status();
 }

@@ -29,7 +29,6 @@
 #include <poll.h>
 #include <pthread.h>
 #include <stdatomic.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,50 +41,7 @@
 #include "devices/input_devs.h"
 #include "devices/queue.h"
 #include "devices/rec_hid.h"
-
-static int failures, checks;
-
-static void
-ok(const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	fputs("ok ", stdout);
-	vprintf(fmt, ap);
-	putchar('\n');
-	va_end(ap);
-	fflush(stdout);
-	checks++;
-}
-
-static void
-fail(const char *what, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	printf("FAIL %s: ", what);
-	vprintf(fmt, ap);
-	putchar('\n');
-	va_end(ap);
-	fflush(stdout);
-	checks++;
-	failures++;
-}
-
-static uint64_t
-now_us(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
-}
-
-static void
-sleep_ms(long ms)
-{
-	struct timespec ts = { ms / 1000, (ms % 1000) * 1000000L };
-	nanosleep(&ts, NULL);
-}
+#include "tests/guest/guest_check.h"
 
 /* ---- uhid ----------------------------------------------------------------------------- */
 
@@ -201,25 +157,6 @@ uhid_answer(void *arg)
 	return NULL;
 }
 
-/* the first eventN below dir (an input device's folder) into dest */
-static int
-event_child(const char *dir, char *dest, size_t n)
-{
-	DIR *d = opendir(dir);
-	if (!d)
-		return -1;
-	struct dirent *e;
-	int rc = -1;
-	while ((e = readdir(d)))
-		if (!strncmp(e->d_name, "event", 5)) {
-			snprintf(dest, n, "/dev/input/%.32s", e->d_name);
-			rc = 0;
-			break;
-		}
-	closedir(d);
-	return rc;
-}
-
 /* /dev/hidrawN and hid-input's /dev/input/eventM of the HID device with this phys */
 static int
 find_nodes(struct fake *f, const char *phys)
@@ -253,7 +190,7 @@ find_nodes(struct fake *f, const char *phys)
 			if (!strncmp(i->d_name, "input", 5)) {
 				char sub[800];
 				snprintf(sub, sizeof sub, "%s/%.64s", path, i->d_name);
-				if (!event_child(sub, f->event, sizeof f->event))
+				if (!event_node(sub, f->event, sizeof f->event))
 					break;
 			}
 		if (in)
@@ -335,20 +272,6 @@ ev3_print(const char *who, const struct ev3 *e, int n)
 static struct input_devs set;
 static struct input_queue q;
 
-/* the device set's fds polled once (up to ms); what was read went into q */
-static void
-poll_set(int ms)
-{
-	struct pollfd fds[INPUT_DEVS_POLL_MAX];
-	int tags[INPUT_DEVS_POLL_MAX];
-	int n = input_devs_pollfds(&set, fds, tags, INPUT_DEVS_POLL_MAX);
-	if (poll(fds, (nfds_t)n, ms) <= 0)
-		return;
-	for (int k = 0; k < n; k++)
-		if (fds[k].revents)
-			input_devs_ready(&set, tags[k], now_us(), &q);
-}
-
 /* our events of device place up to its next frame end (or kind `until`): 0, or -1 timed out */
 static int
 ours_frame(int place, struct ev3 *dest, int *n, enum input_kind until, int *removed)
@@ -377,7 +300,7 @@ ours_frame(int place, struct ev3 *dest, int *n, enum input_kind until, int *remo
 		}
 		if (now_us() - t0 > 3000000)
 			return -1;
-		poll_set(50);
+		poll_devs(&set, &q, 50);
 	}
 }
 
@@ -388,11 +311,11 @@ kernel_frame(int fd, struct ev3 *dest, int *n)
 	uint64_t t0 = now_us();
 	*n = 0;
 	while (now_us() - t0 < 3000000) {
-		struct pollfd p = { .fd = fd, .events = POLLIN };
-		if (poll(&p, 1, 50) != 1)
-			continue;
 		struct input_event e;
-		if (read(fd, &e, sizeof e) != (ssize_t)sizeof e)
+		int got = read_event(fd, &e, 50);
+		if (got == 0)
+			continue;
+		if (got < 0)
 			return -1;
 		if (e.type == EV_SYN && e.code == SYN_REPORT) {
 			if (*n)
@@ -774,6 +697,6 @@ out:
 	}
 	rec_hid_free(&two);
 	rec_hid_free(&more);
-	printf("guest_hidraw: %d checks, %d failures\n", checks, failures);
-	return failures > 100 ? 100 : failures;
+	printf("guest_hidraw: %d checks, %d failures\n", guest_checks, guest_failures);
+	return guest_status();
 }

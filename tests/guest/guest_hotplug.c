@@ -12,7 +12,6 @@
 #include <fcntl.h>
 #include <linux/uinput.h>
 #include <poll.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/ioctl.h>
@@ -22,40 +21,13 @@
 #include "devices/hotplug.h"
 #include "devices/input_backends.h"
 #include "devices/input_devs.h"
+#include "tests/guest/guest_check.h"
 
-static int failures;
-
-static void
-check(int cond, const char *what, const char *fmt, ...)
-{
-	if (cond) {
-		printf("ok %s\n", what);
-	} else {
-		va_list ap;
-		va_start(ap, fmt);
-		printf("FAIL %s: ", what);
-		vprintf(fmt, ap);
-		putchar('\n');
-		va_end(ap);
-		failures++;
-	}
-	fflush(stdout);
-}
-
-static uint64_t
-now_us(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
-}
-
+/* one record through uinput, a failure said */
 static void
 emit(int fd, int type, int code, int value)
 {
-	struct input_event ev = { .type = (unsigned short)type, .code = (unsigned short)code,
-				  .value = value };
-	if (write(fd, &ev, sizeof ev) != (ssize_t)sizeof ev)
+	if (uinput_emit(fd, (unsigned)type, (unsigned)code, value) < 0)
 		printf("uinput write: %s\n", strerror(errno));
 }
 
@@ -149,7 +121,7 @@ main(void)
 	int ufd = make_mouse();
 	check(ufd >= 0, "uinput mouse made", "%s", strerror(errno));
 	if (ufd < 0)
-		return failures;
+		return guest_failures;
 	int arrivals = pump(&h, &s, &q, 1500);
 	check(arrivals >= 1, "its arrival seen by the monitor", "%d arrivals", arrivals);
 	int place = -1;
@@ -160,7 +132,7 @@ main(void)
 	      "the rescan opened the new mouse and nothing else", "place %d, %d devices", place,
 	      input_devs_count(&s));
 	if (place < 0)
-		return failures;
+		return guest_failures;
 	check(s.place[place].info.cls == INPUT_CLASS_MOUSE && s.place[place].info.vendor == 0x1234 &&
 		      s.place[place].info.product == 0x5679,
 	      "it is a mouse with its id", "class %d id %04x:%04x", s.place[place].info.cls,
@@ -189,6 +161,6 @@ main(void)
 
 	input_devs_close_all(&s, now_us(), NULL);
 	hotplug_close(&h);
-	printf("hotplug: %d failure(s)\n", failures);
-	return failures > 100 ? 100 : failures;
+	printf("hotplug: %d failure(s)\n", guest_failures);
+	return guest_status();
 }

@@ -31,7 +31,6 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <poll.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -48,52 +47,11 @@
 #include "devices/input_devs.h"
 #include "devices/queue.h"
 #include "devices/usb_dev.h"
+#include "tests/guest/guest_check.h"
 
 #define GADGET "/sys/kernel/config/usb_gadget/posture_usb"
 #define VID "1d6b"
 #define PID "0104"
-
-static int failures;
-
-static void
-ok(const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	fputs("ok ", stdout);
-	vprintf(fmt, ap);
-	putchar('\n');
-	va_end(ap);
-	fflush(stdout);
-}
-
-static void
-fail(const char *what, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	printf("FAIL %s: ", what);
-	vprintf(fmt, ap);
-	putchar('\n');
-	va_end(ap);
-	fflush(stdout);
-	failures++;
-}
-
-static uint64_t
-now_us(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
-}
-
-static void
-sleep_ms(long ms)
-{
-	struct timespec ts = { ms / 1000, (ms % 1000) * 1000000L };
-	nanosleep(&ts, NULL);
-}
 
 /* QEMU's USB mouse (hw/usb/dev-hid.c, MIT): buttons 1-3, X, Y, wheel; 4-byte reports */
 static const unsigned char mouse_rdesc[] = {
@@ -280,6 +238,45 @@ put_text(const char *path, const char *text)
 	return put(path, text, strlen(text));
 }
 
+/* the gadget's function name's attribute attr: 0, or -1 (errno) */
+static int
+function_put(const char *name, const char *attr, const void *data, size_t len)
+{
+	char path[200];
+	snprintf(path, sizeof path, GADGET "/functions/%s/%s", name, attr);
+	return put(path, data, len);
+}
+
+/*
+ * The gadget's HID function name (made unless there) with its protocol,
+ * subclass, report length and report descriptor: 0, or -1 (errno)
+ */
+static int
+hid_function(const char *name, const char *protocol, const char *subclass,
+	     const char *report_length, const unsigned char *desc, size_t len)
+{
+	char path[200];
+	snprintf(path, sizeof path, GADGET "/functions/%s", name);
+	if (mkdir(path, 0755) < 0 && errno != EEXIST)
+		return -1;
+	if (function_put(name, "protocol", protocol, strlen(protocol)) ||
+	    function_put(name, "subclass", subclass, strlen(subclass)) ||
+	    function_put(name, "report_length", report_length, strlen(report_length)) ||
+	    function_put(name, "report_desc", desc, len))
+		return -1;
+	return 0;
+}
+
+/* the function name linked into the configuration (or linked already): 0, or -1 (errno) */
+static int
+function_link(const char *name)
+{
+	char from[200], to[200];
+	snprintf(from, sizeof from, GADGET "/functions/%s", name);
+	snprintf(to, sizeof to, GADGET "/configs/c.1/%s", name);
+	return symlink(from, to) < 0 && errno != EEXIST ? -1 : 0;
+}
+
 static char udc[128];
 
 static int
@@ -312,21 +309,12 @@ gadget_make(void)
 	if (put_text(GADGET "/idVendor", "0x" VID) || put_text(GADGET "/idProduct", "0x" PID) ||
 	    put_text(GADGET "/strings/0x409/manufacturer", "posture") ||
 	    put_text(GADGET "/strings/0x409/product", "usb test gadget") ||
-	    put_text(GADGET "/functions/hid.usb0/protocol", "2") ||
-	    put_text(GADGET "/functions/hid.usb0/subclass", "1") ||
-	    put_text(GADGET "/functions/hid.usb0/report_length", "4") ||
-	    put(GADGET "/functions/hid.usb0/report_desc", mouse_rdesc, sizeof mouse_rdesc) ||
-	    put_text(GADGET "/functions/hid.usb1/protocol", "1") ||
-	    put_text(GADGET "/functions/hid.usb1/subclass", "1") ||
-	    put_text(GADGET "/functions/hid.usb1/report_length", "8") ||
-	    put(GADGET "/functions/hid.usb1/report_desc", keyboard_rdesc, sizeof keyboard_rdesc)) {
+	    hid_function("hid.usb0", "2", "1", "4", mouse_rdesc, sizeof mouse_rdesc) ||
+	    hid_function("hid.usb1", "1", "1", "8", keyboard_rdesc, sizeof keyboard_rdesc)) {
 		fail("gadget", "configfs attribute: %s", strerror(errno));
 		return -1;
 	}
-	if ((symlink(GADGET "/functions/hid.usb0", GADGET "/configs/c.1/hid.usb0") < 0 &&
-	     errno != EEXIST) ||
-	    (symlink(GADGET "/functions/hid.usb1", GADGET "/configs/c.1/hid.usb1") < 0 &&
-	     errno != EEXIST)) {
+	if (function_link("hid.usb0") || function_link("hid.usb1")) {
 		fail("gadget", "link functions: %s", strerror(errno));
 		return -1;
 	}
@@ -337,6 +325,24 @@ static int
 gadget_bind(int on)
 {
 	return put_text(GADGET "/UDC", on ? udc : "\n");
+}
+
+/*
+ * Unplugged: the gadget unbound, its functions a and b taken out of the
+ * configuration, and the host has let the old device go (or 3 s passed).
+ * 0, or -1 (errno).
+ */
+static int
+gadget_unplug(const char *a, const char *b)
+{
+	char link[2][200];
+	snprintf(link[0], sizeof link[0], GADGET "/configs/c.1/%s", a);
+	snprintf(link[1], sizeof link[1], GADGET "/configs/c.1/%s", b);
+	if (gadget_bind(0) < 0 || unlink(link[0]) < 0 || unlink(link[1]) < 0)
+		return -1;
+	for (int t = 0; t < 150 && !access("/sys/bus/usb/devices/1-1", F_OK); t++)
+		sleep_ms(20);
+	return 0;
 }
 
 /*
@@ -373,13 +379,7 @@ kernel_nodes(int iface, char *event, size_t n)
 				continue;
 			char sub[PATH_MAX + 300];
 			snprintf(sub, sizeof sub, "%s/%s", in, ie->d_name);
-			DIR *ds = opendir(sub);
-			struct dirent *se;
-			while (ds && (se = readdir(ds)))
-				if (!strncmp(se->d_name, "event", 5))
-					snprintf(event, n, "/dev/input/%.40s", se->d_name);
-			if (ds)
-				closedir(ds);
+			event_node(sub, event, n);
 		}
 		if (di)
 			closedir(di);
@@ -432,11 +432,8 @@ evdev_frame(int fd, struct meaning *m, int ms)
 {
 	m->n = 0;
 	for (;;) {
-		struct pollfd p = { .fd = fd, .events = POLLIN };
-		if (poll(&p, 1, ms) <= 0)
-			return -1;
 		struct input_event ie;
-		if (read(fd, &ie, sizeof ie) != (ssize_t)sizeof ie)
+		if (read_event(fd, &ie, ms) <= 0)
 			return -1;
 		if (ie.type == EV_SYN && ie.code == SYN_REPORT)
 			return 0;
@@ -509,15 +506,9 @@ pump(int ms)
 {
 	uint64_t end = now_us() + (uint64_t)ms * 1000u;
 	do {
-		struct pollfd fds[INPUT_DEVS_POLL_MAX];
-		int tags[INPUT_DEVS_POLL_MAX];
-		int n = input_devs_pollfds(&set, fds, tags, INPUT_DEVS_POLL_MAX);
 		uint64_t t = now_us();
 		int left = t >= end ? 0 : (int)((end - t) / 1000);
-		if (poll(fds, (nfds_t)n, left > 10 ? 10 : left) > 0)
-			for (int k = 0; k < n; k++)
-				if (fds[k].revents)
-					input_devs_ready(&set, tags[k], now_us(), &q);
+		poll_devs(&set, &q, left > 10 ? 10 : left);
 		struct input_event_rec e;
 		while (input_queue_pop(&q, &e))
 			if (nseen < SEEN_MAX)
@@ -676,26 +667,13 @@ static void
 boot_fallback(void)
 {
 	const char *W = "boot fallback";
-	if (gadget_bind(0) < 0 || unlink(GADGET "/configs/c.1/hid.usb0") < 0 ||
-	    unlink(GADGET "/configs/c.1/hid.usb1") < 0) {
+	if (gadget_unplug("hid.usb0", "hid.usb1") < 0) {
 		fail(W, "unbind and unlink: %s", strerror(errno));
 		return;
 	}
-	for (int t = 0; t < 150 && !access("/sys/bus/usb/devices/1-1", F_OK); t++)
-		sleep_ms(20); /* the host has let the old device go */
-	if ((mkdir(GADGET "/functions/hid.usb2", 0755) < 0 && errno != EEXIST) ||
-	    (mkdir(GADGET "/functions/hid.usb3", 0755) < 0 && errno != EEXIST) ||
-	    put_text(GADGET "/functions/hid.usb2/protocol", "2") ||
-	    put_text(GADGET "/functions/hid.usb2/subclass", "1") ||
-	    put_text(GADGET "/functions/hid.usb2/report_length", "12") ||
-	    put(GADGET "/functions/hid.usb2/report_desc", refused_rdesc, sizeof refused_rdesc) ||
-	    put_text(GADGET "/functions/hid.usb3/protocol", "0") ||
-	    put_text(GADGET "/functions/hid.usb3/subclass", "0") ||
-	    put_text(GADGET "/functions/hid.usb3/report_length", "12") ||
-	    put(GADGET "/functions/hid.usb3/report_desc", refused_rdesc, sizeof refused_rdesc) ||
-	    symlink(GADGET "/functions/hid.usb2", GADGET "/configs/c.1/hid.usb2") < 0 ||
-	    symlink(GADGET "/functions/hid.usb3", GADGET "/configs/c.1/hid.usb3") < 0 ||
-	    gadget_bind(1) < 0) {
+	if (hid_function("hid.usb2", "2", "1", "12", refused_rdesc, sizeof refused_rdesc) ||
+	    hid_function("hid.usb3", "0", "0", "12", refused_rdesc, sizeof refused_rdesc) ||
+	    function_link("hid.usb2") || function_link("hid.usb3") || gadget_bind(1) < 0) {
 		fail(W, "the second gadget: %s", strerror(errno));
 		return;
 	}
@@ -810,22 +788,15 @@ static void
 multiplier(void)
 {
 	const char *W = "multiplier";
-	if (gadget_bind(0) < 0 || unlink(GADGET "/configs/c.1/hid.usb2") < 0 ||
-	    unlink(GADGET "/configs/c.1/hid.usb3") < 0) {
+	if (gadget_unplug("hid.usb2", "hid.usb3") < 0) {
 		fail(W, "unbind and unlink: %s", strerror(errno));
 		return;
 	}
-	for (int t = 0; t < 150 && !access("/sys/bus/usb/devices/1-1", F_OK); t++)
-		sleep_ms(20);
 	/* f_hid has four minors: hid.usb0's (unlinked by now) is given back for this one */
 	if (rmdir(GADGET "/functions/hid.usb0") < 0 ||
-	    (mkdir(GADGET "/functions/hid.usb4", 0755) < 0 && errno != EEXIST) ||
-	    put_text(GADGET "/functions/hid.usb4/protocol", "0") ||
-	    put_text(GADGET "/functions/hid.usb4/subclass", "0") ||
-	    put_text(GADGET "/functions/hid.usb4/report_length", "7") ||
+	    hid_function("hid.usb4", "0", "0", "7", hires_rdesc, sizeof hires_rdesc) ||
 	    put_text(GADGET "/functions/hid.usb4/no_out_endpoint", "1") ||
-	    put(GADGET "/functions/hid.usb4/report_desc", hires_rdesc, sizeof hires_rdesc) ||
-	    symlink(GADGET "/functions/hid.usb4", GADGET "/configs/c.1/hid.usb4") < 0) {
+	    function_link("hid.usb4")) {
 		fail(W, "the third gadget: %s", strerror(errno));
 		return;
 	}
@@ -944,7 +915,7 @@ main(void)
 	if (access("/dev/bus/usb", F_OK) != 0)
 		printf("note: /dev/bus/usb missing before the gadget\n");
 	if (gadget_make() < 0 || gadget_bind(1) < 0) {
-		if (!failures)
+		if (!guest_failures)
 			fail("gadget", "bind: %s", strerror(errno));
 		goto out;
 	}
@@ -1098,6 +1069,6 @@ out:
 		kill(relay_pid, SIGKILL);
 		waitpid(relay_pid, NULL, 0);
 	}
-	printf("guest_usb: %d failure%s\n", failures, failures == 1 ? "" : "s");
-	return failures > 100 ? 100 : failures;
+	printf("guest_usb: %d failure%s\n", guest_failures, guest_failures == 1 ? "" : "s");
+	return guest_status();
 }

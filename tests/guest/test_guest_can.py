@@ -17,41 +17,22 @@ stale event can only come from the backend's timer.
 import os
 import re
 import shutil
-import subprocess
 import sys
 
 import can
 import cantools
 import pytest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
+from tier import BUILD, ROOT, assert_checks, require_tier, run_program
+
 CAN_DIR = os.path.join(ROOT, "tests", "input", "can")
-BUILD = os.path.join(ROOT, os.environ.get("POSTURE_BUILD", "build/rel"))
-sys.path.insert(0, HERE)
 sys.path.insert(0, CAN_DIR)
-import guest  # noqa: E402
 import make_expect  # noqa: E402
 
 SPLIT = 110                 # frames of panel.log played before vcan0 goes down
 BTN_TRIGGER_HAPPY1 = 0x2C0  # linux/input-event-codes.h: a button line's default code (can_map.h)
 PROBE = ("axis", "185", "0|16@1+", "Extra.Probe", 500)
 PROBE_DATA = b"\x34\x12"    # what guest_can sends on 185: little-endian 0x1234
-
-
-@pytest.fixture(scope="module")
-def tier():
-    if os.environ.get("POSTURE_GUEST") == "skip":
-        pytest.skip("kernel tier: POSTURE_GUEST=skip")
-    ok, why = guest.check()
-    if not ok and guest.fetchable():
-        try:
-            guest.fetch()
-        except guest.GuestError as e:
-            pytest.skip("kernel tier: %s" % e)
-        ok, why = guest.check()
-    if not ok:
-        pytest.skip("kernel tier: %s" % why)
 
 
 def guest_map(path):
@@ -151,13 +132,12 @@ def same_events(got, want, where):
             "%s event %d: %r, cantools %r" % (where, k, g[3], w[3])
 
 
-def test_guest_can(tier, tmp_path):
+def test_guest_can(tmp_path):
+    require_tier()
     canplayer = shutil.which("canplayer")
     if canplayer is None:
         pytest.skip("kernel tier: canplayer is not installed (Debian package can-utils)")
-    exe = os.path.join(BUILD, "guest", "guest_can")
-    tool = os.path.join(BUILD, "bin", "posture-input")
-    assert os.path.exists(exe), "build it first: make all"
+    tool = BUILD / "bin" / "posture-input"
 
     lines = guest_map(tmp_path / "panel.map")
     with open(os.path.join(CAN_DIR, "panel.log")) as f:
@@ -166,28 +146,18 @@ def test_guest_can(tier, tmp_path):
     (tmp_path / "log2").write_text("".join(log[SPLIT:]))
     n1, n2 = SPLIT, len(log) - SPLIT
 
-    p = subprocess.run(
-        [sys.executable, os.path.join(HERE, "guest.py"), "run", "--modules", "vcan,can_raw",
-         "--timeout", "240", "--exe", canplayer, "--exe", tool,
-         "--file", "%s:/guest/panel.map" % (tmp_path / "panel.map"),
-         "--file", "%s:/guest/log1" % (tmp_path / "log1"),
-         "--file", "%s:/guest/log2" % (tmp_path / "log2"),
-         exe, "/guest/panel.map", "/guest/log1", str(n1), "/guest/log2", str(n2),
+    status, output = run_program(
+        "guest_can", ["vcan", "can_raw"],
+        ["/guest/panel.map", "/guest/log1", n1, "/guest/log2", n2,
          "/usr/local/bin/posture-input"],
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    out = p.stdout
-    print(out)
-    assert p.returncode != 125, "the guest did not run:\n" + out
-    failed = [l for l in out.splitlines() if l.startswith("FAIL ")]
-    assert not failed, "\n".join(failed)
-    for what in ("missing interface skipped: no such CAN interface",
-                 "rescan opens vcan0 as a panel", "canplayer first half read",
-                 "vcan0 down seen", "canplayer second half read after up",
-                 "kernel filters", "overflow counted", "vcan0 deleted: the device removed",
-                 "vcan0 created again (down): a rescan opens it",
-                 "vcan0 up after the open: frames read"):
-        assert any(l.startswith("ok " + what) for l in out.splitlines()), "no 'ok %s'" % what
-    assert p.returncode == 0
+        files=["%s:/guest/%s" % (tmp_path / f, f) for f in ("panel.map", "log1", "log2")],
+        exes=[canplayer, tool])
+    assert_checks(status, output, [
+        "missing interface skipped: no such CAN interface", "rescan opens vcan0 as a panel",
+        "canplayer first half read", "vcan0 down seen", "canplayer second half read after up",
+        "kernel filters", "overflow counted", "vcan0 deleted: the device removed",
+        "vcan0 created again (down): a rescan opens it", "vcan0 up after the open: frames read"])
+    out = "".join(line + "\n" for line in output)
 
     # the events, against cantools' values through the event rule
     played = list(can.CanutilsLogReader(os.path.join(CAN_DIR, "panel.log")))
@@ -211,7 +181,6 @@ def test_guest_can(tier, tmp_path):
                 + [("removed", 2, 0, 0.0, 0)], "vcan0 deleted")
 
     # the log lines that say what happened, once each
-    bus_off = "ok bus-off error frame counted" in out
     for said, times in (("interface vcan0 went down: ", 1),
                         ("interface vcan0 is down: frames will be read when it is up", 1),
                         ("frames again on vcan0", 3 if bus_off else 2),

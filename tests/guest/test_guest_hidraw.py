@@ -10,20 +10,9 @@ unavailable (POSTURE_GUEST=skip skips it on purpose) or the guest program was no
 (`make all` builds $(BUILD)/rel/guest/guest_hidraw).
 """
 
-import os
-import pathlib
-import subprocess
-import sys
+from tier import ROOT, assert_checks, require_built, require_tier, run_program
 
-import pytest
-
-HERE = pathlib.Path(__file__).resolve().parent
-ROOT = HERE.parents[1]
-BUILD = ROOT / os.environ.get("POSTURE_BUILD", "build/rel")
-BINARY = BUILD / "guest" / "guest_hidraw"
 HID = ROOT / "tests" / "input" / "hid"
-sys.path.insert(0, str(HERE))
-import guest  # noqa: E402
 
 # the checks the program must pass: (what the line says)
 EXPECTED = (
@@ -49,40 +38,16 @@ EXPECTED = (
 )
 
 
-@pytest.fixture(scope="module")
-def tier():
-    if os.environ.get("POSTURE_GUEST") == "skip":
-        pytest.skip("kernel tier: POSTURE_GUEST=skip")
-    ok, why = guest.check()
-    if not ok and guest.fetchable():
-        try:
-            guest.fetch()
-        except guest.GuestError as e:
-            pytest.skip("kernel tier: %s" % e)
-        ok, why = guest.check()
-    if not ok:
-        pytest.skip("kernel tier: %s" % why)
-    if not BINARY.exists():
-        pytest.skip("kernel tier: %s is not built (make all)" % BINARY)
-
-
-def test_guest_hidraw_agrees_with_hid_input(tier):
-    p = subprocess.run([sys.executable, str(HERE / "guest.py"), "run", "--modules", "uhid",
-                        "--timeout", "240",
-                        "--file", "%s:/guest/two.hid" % (HID / "hidtools_two.hid"),
-                        "--file", "%s:/guest/mouse.hid" % (HID / "hidtools_mouse.hid"),
-                        "--file", "%s:/guest/hires.rdesc" % (HID / "hires_wheel.rdesc"),
-                        str(BINARY), "/guest/two.hid", "/guest/mouse.hid",
-                        "/guest/hires.rdesc"],
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    print(p.stdout)
-    assert p.returncode != 125, "the guest did not run:\n" + p.stdout
-    lines = p.stdout.splitlines()
-    failed = [ln for ln in lines if ln.startswith("FAIL ")]
-    assert not failed, "\n".join(failed)
+def test_guest_hidraw_agrees_with_hid_input():
+    require_tier()
+    require_built("guest_hidraw")
+    files = {"two.hid": "hidtools_two.hid", "mouse.hid": "hidtools_mouse.hid",
+             "hires.rdesc": "hires_wheel.rdesc"}
+    status, lines = run_program(
+        "guest_hidraw", ["uhid"], ["/guest/" + name for name in files],
+        files=["%s:/guest/%s" % (HID / src, name) for name, src in files.items()])
+    assert_checks(status, lines, EXPECTED)
     passed = [ln for ln in lines if ln.startswith("ok ")]
-    for what in EXPECTED:
-        assert any(what in ln for ln in passed), "no 'ok %s' line" % what
     # every report of both recordings was compared: 4 in the two-device one, 3 in the mouse's
     assert sum("recorded report" in ln for ln in passed) == 7
     # the line that says the mouse went away blames the device and counts the release
@@ -93,4 +58,3 @@ def test_guest_hidraw_agrees_with_hid_input(tier):
                for ln in lines)
     assert sum("hi-res mouse hi-res report" in ln for ln in passed) == 7
     assert "guest_hidraw: 38 checks, 0 failures" in lines
-    assert p.returncode == 0

@@ -11,15 +11,7 @@ It skips, saying why, when the kernel tier cannot run or the program was not
 built (make all builds it into $POSTURE_BUILD/guest).
 """
 
-import io
-import os
-import sys
-
-import pytest
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import guest  # noqa: E402
+from tier import assert_checks, require_built, require_tier, run_program
 
 EXPECTED = ("gadget 1d6b:0104 bound", "the kernel's meaning of 8 reports",
             "opened usb:1-1:0", "detach:", "usb reports: all 8 reports",
@@ -29,39 +21,9 @@ EXPECTED = ("gadget 1d6b:0104 bound", "the kernel's meaning of 8 reports",
             "multiplier: 1/8 + 7/8")
 
 
-@pytest.fixture(scope="module")
-def tier():
-    if os.environ.get("POSTURE_GUEST") == "skip":
-        pytest.skip("kernel tier: POSTURE_GUEST=skip")
-    ok, why = guest.check()
-    if not ok and guest.fetchable():
-        try:
-            guest.fetch()
-        except guest.GuestError as e:
-            pytest.skip("kernel tier: %s" % e)
-        ok, why = guest.check()
-    if not ok:
-        pytest.skip("kernel tier: %s" % why)
-
-
-def test_guest_usb(tier):
-    build = os.environ.get("POSTURE_BUILD", os.path.join("build", "rel"))
-    exe = os.path.join(build, "guest", "guest_usb")
-    if not os.access(exe, os.X_OK):
-        pytest.skip("%s is not built (make all)" % exe)
-    out = io.StringIO()
-    try:
-        status = guest.run(os.path.abspath(exe), modules=["usb_f_hid"],
-                           timeout=180, out=out)
-    except guest.GuestError as e:
-        pytest.fail("the guest did not run: %s\n%s" % (e, out.getvalue()))
-    text = out.getvalue()
-    print(text)
-    lines = text.splitlines()
-    failed = [ln for ln in lines if ln.startswith("FAIL ")]
-    assert not failed, "\n".join(failed)
-    passed = [ln for ln in lines if ln.startswith("ok ")]
-    for what in EXPECTED:
-        assert any(what in ln for ln in passed), "no 'ok %s' line" % what
+def test_guest_usb():
+    require_tier()
+    require_built("guest_usb")
+    status, lines = run_program("guest_usb", ["usb_f_hid"], timeout=180)
+    assert_checks(status, lines, EXPECTED)
     assert "guest_usb: 0 failures" in lines
-    assert status == 0

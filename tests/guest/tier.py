@@ -32,10 +32,23 @@ def require_tier():
         pytest.skip("kernel tier: %s" % why)
 
 
+def program(name):
+    """$POSTURE_BUILD/guest/NAME: where make builds the guest program NAME."""
+    return BUILD / "guest" / name
+
+
+def require_built(name):
+    """Skips the calling test when make has not built the guest program NAME."""
+    if not program(name).exists():
+        pytest.skip("kernel tier: %s is not built (make all)" % program(name))
+
+
 def run_program(name, modules, args=(), files=(), exes=(), timeout=240):
-    """Runs $POSTURE_BUILD/guest/NAME in the guest; returns (exit status, output lines).
-    A harness failure (exit 125) fails the test with the guest's output."""
-    exe = BUILD / "guest" / name
+    """Runs the guest program NAME ($POSTURE_BUILD/guest/NAME; a pathlib.Path is run as
+    it is) in the guest; returns (exit status, output lines). files are SRC[:DEST] and
+    exes host programs, as guest.py run takes them. A harness failure (exit 125) fails the
+    test with the guest's output."""
+    exe = name if isinstance(name, pathlib.Path) else program(name)
     assert exe.exists(), "%s is not built (make all builds it)" % exe
     cmd = [sys.executable, str(HERE / "guest.py"), "run", "--modules", ",".join(modules),
            "--timeout", str(timeout)]
