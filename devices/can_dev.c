@@ -250,13 +250,7 @@ can_dev_gone(struct can_dev *d, uint64_t now_us, struct input_queue *q, int err)
 	else
 		devlog(&d->link_log, now_us, DEVLOG_KERNEL,
 		       "gone (end of the stream); %d button(s) released", released);
-	struct input_event_rec e = {
-		.t_us = now_us,
-		.device = d->in.device,
-		.kind = INPUT_REMOVED,
-		.code = INPUT_CLASS_PANEL,
-	};
-	input_queue_push(q, &e);
+	input_queue_removed(q, now_us, d->in.device, INPUT_CLASS_PANEL);
 }
 
 /* the kernel's receive time and drop count from the control messages */

@@ -187,13 +187,7 @@ evdev_dev_gone(struct evdev_dev *d, uint64_t now_us, struct input_queue *q, int 
 	else
 		devlog(&d->in.log, now_us, DEVLOG_KERNEL,
 		       "gone (end of the stream); %d key(s) and button(s) released", released);
-	struct input_event_rec e = {
-		.t_us = now_us,
-		.device = d->in.device,
-		.kind = INPUT_REMOVED,
-		.code = (uint16_t)d->info.cls,
-	};
-	input_queue_push(q, &e);
+	input_queue_removed(q, now_us, d->in.device, d->info.cls);
 }
 
 /* after SYN_DROPPED: the kernel's key state put right; unknown (ioctl refused) means all up */

@@ -545,13 +545,7 @@ hidraw_dev_gone(struct hidraw_dev *d, uint64_t now_us, struct input_queue *q, co
 		held += d->in.held[c] != 0;
 	hid_input_release_all(&d->in, now_us, q);
 	devlog(&d->in.log, now_us, blame, "gone (%s); %d key(s) and button(s) released", why, held);
-	struct input_event_rec e = {
-		.t_us = now_us,
-		.device = d->in.device,
-		.kind = INPUT_REMOVED,
-		.code = (uint16_t)d->info.cls,
-	};
-	input_queue_push(q, &e);
+	input_queue_removed(q, now_us, d->in.device, d->info.cls);
 }
 
 int

@@ -124,3 +124,12 @@ input_queue_pop(struct input_queue *q, struct input_event_rec *dest)
 	q->len--;
 	return 1;
 }
+
+int
+input_queue_removed(struct input_queue *q, uint64_t t_us, uint16_t device, enum input_class cls)
+{
+	struct input_event_rec e = {
+		.t_us = t_us, .device = device, .kind = INPUT_REMOVED, .code = (uint16_t)cls,
+	};
+	return input_queue_push(q, &e);
+}

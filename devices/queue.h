@@ -31,6 +31,9 @@ void input_queue_init(struct input_queue *q);
 /* returns 0 when queued, 1 when merged or skipped, -1 when lost (queue full) */
 int input_queue_push(struct input_queue *q, const struct input_event_rec *e);
 
+/* queues INPUT_REMOVED for a device of class cls (what every backend says last) */
+int input_queue_removed(struct input_queue *q, uint64_t t_us, uint16_t device, enum input_class cls);
+
 /* the oldest event into dest: 1, or 0 when empty */
 int input_queue_pop(struct input_queue *q, struct input_event_rec *dest);
 

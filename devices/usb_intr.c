@@ -117,12 +117,6 @@ usb_intr_reap(struct usb_intr *u, uint64_t now_us, struct input_queue *q)
 		held += u->in.held[c] != 0;
 	hid_input_release_all(&u->in, now_us, q);
 	devlog(&u->in.log, now_us, DEVLOG_DEVICE, "gone; %d key(s) and button(s) released", held);
-	struct input_event_rec e = {
-		.t_us = now_us,
-		.device = u->in.device,
-		.kind = INPUT_REMOVED,
-		.code = (uint16_t)u->cls,
-	};
-	input_queue_push(q, &e);
+	input_queue_removed(q, now_us, u->in.device, u->cls);
 	return -1;
 }

@@ -11,6 +11,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "expect_event.h"
+
 #include <linux/input-event-codes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -144,15 +146,7 @@ feed(const uint8_t *r, size_t n)
 static void
 expect_event(enum input_kind kind, unsigned code, int value)
 {
-	struct input_event_rec e;
-	if (!input_queue_pop(&queue, &e))
-		fail_msg("no event; want %s code %u value %d", input_kind_to_str(kind), code,
-			 value);
-	if (e.kind != kind || e.code != code || e.value != value)
-		fail_msg("got %s code %u value %d; want %s code %u value %d",
-			 input_kind_to_str((enum input_kind)e.kind), e.code, e.value,
-			 input_kind_to_str(kind), code, value);
-	assert_int_equal(e.device, 7);
+	expect_event_in(&queue, 7, kind, code, value);
 }
 
 static struct input_event_rec
