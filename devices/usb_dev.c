@@ -40,6 +40,10 @@ struct usb_dev {
 	uint8_t halted;     /* a stall: the halt is cleared in read, outside the callback */
 	uint8_t closing;    /* the callback decodes nothing more */
 	char path[INPUT_DEV_PATH_MAX];
+	/* a recorder's copy of every report, and what it writes first */
+	usb_dev_tap_fn tap;
+	void *tap_ctx;
+	struct rec_hid_device rec; /* the descriptor decoded by (the boot one in boot protocol) */
 	struct usb_intr u;  /* last: large */
 };
 
@@ -278,6 +282,12 @@ usb_dev_transfer_done(struct libusb_transfer *t)
 	d->submitted = 0;
 	if (d->closing)
 		return;
+	if (d->tap && t->status == LIBUSB_TRANSFER_COMPLETED && t->actual_length > 0) {
+		size_t n = (size_t)t->actual_length;
+		if (d->u.boot_len && n > d->u.boot_len) /* what the decoder takes of a boot report */
+			n = d->u.boot_len;
+		d->tap(d->tap_ctx, usb.now_us, t->buffer, n);
+	}
 	enum usb_intr_next next =
 		usb_intr_complete(&d->u, usb_dev_status(t->status), t->buffer,
 				  (size_t)(t->actual_length > 0 ? t->actual_length : 0), usb.now_us,
@@ -475,6 +485,11 @@ usb_dev_open_iface(struct usb_dev *d, libusb_device *dev, const struct libusb_de
 		return -1;
 	}
 	usb_dev_name(d->h, dd, info->name, sizeof info->name);
+	snprintf(d->rec.name, sizeof d->rec.name, "%s", info->name);
+	snprintf(d->rec.phys, sizeof d->rec.phys, "%s", d->path);
+	d->rec.bus = 0x03; /* BUS_USB, as hid-recorder's I: line gives it */
+	d->rec.vid = dd->idVendor;
+	d->rec.pid = dd->idProduct;
 	char who[48];
 	snprintf(who, sizeof who, "%.24s (%.20s)", info->name, d->path + 4);
 
@@ -525,6 +540,10 @@ usb_dev_open_iface(struct usb_dev *d, libusb_device *dev, const struct libusb_de
 				 libusb_strerror(rc));
 		else
 			parsed = hid_desc_parse(raw, (size_t)rc, &desc, perr, sizeof perr);
+		if (parsed == 0) {
+			memcpy(d->rec.desc, raw, (size_t)rc);
+			d->rec.desc_len = (uint16_t)rc;
+		}
 		free(raw);
 	}
 	size_t boot_len = 0;
@@ -545,6 +564,10 @@ usb_dev_open_iface(struct usb_dev *d, libusb_device *dev, const struct libusb_de
 		       "boot protocol", d->path, perr);
 		hid_desc_boot((enum hid_boot)boot_kind, &desc);
 		boot_len = boot_kind == HID_BOOT_MOUSE ? USB_BOOT_MOUSE_BYTES : USB_BOOT_KEYBOARD_BYTES;
+		size_t nb;
+		const uint8_t *b = hid_desc_boot_bytes((enum hid_boot)boot_kind, &nb);
+		memcpy(d->rec.desc, b, nb);
+		d->rec.desc_len = (uint16_t)nb;
 	} else {
 		snprintf(why, whylen, "report descriptor refused (%.120s); not a boot interface", perr);
 		usb_dev_unclaim(d);
@@ -792,3 +815,17 @@ const struct input_backend input_backend_usb = {
 	.shared_work = usb_backend_shared_work,
 	.arrived = usb_backend_arrived,
 };
+
+void
+usb_dev_set_tap(void *dev, usb_dev_tap_fn fn, void *ctx)
+{
+	struct usb_dev *d = dev;
+	d->tap = fn;
+	d->tap_ctx = ctx;
+}
+
+void
+usb_dev_describe(const void *dev, struct rec_hid_device *dest)
+{
+	*dest = ((const struct usb_dev *)dev)->rec;
+}

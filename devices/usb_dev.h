@@ -50,6 +50,7 @@
 #include <stdint.h>
 
 #include "devices/input_backend.h"
+#include "devices/rec_hid.h"
 #include "devices/usb_intr.h"
 
 #define USB_DEV_CANCEL_WAIT_MS 500 /* a cancelled transfer's callback is waited for this long */
@@ -70,5 +71,16 @@ int usb_dev_exit(void);
 
 /* the backend for the device set: usb:VID:PID[:IFACE] (devices/input_backend.h) */
 extern const struct input_backend input_backend_usb;
+
+/*
+ * For a recorder (posture-input record usb:...): fn gets a copy of every
+ * report of the device (dev: a usb place's device in the set) as the
+ * decoder takes it, stamped with the time of the loop's work.
+ */
+typedef void (*usb_dev_tap_fn)(void *ctx, uint64_t t_us, const uint8_t *report, size_t n);
+void usb_dev_set_tap(void *dev, usb_dev_tap_fn fn, void *ctx);
+
+/* what a hid-recorder file says of the device first: name, ids, the descriptor decoded by */
+void usb_dev_describe(const void *dev, struct rec_hid_device *dest);
 
 #endif

@@ -43,6 +43,7 @@
 #include "devices/rec_evemu.h"
 #include "devices/rec_hid.h"
 #include "devices/textfile.h"
+#include "devices/usb_dev.h"
 
 static const char usage[] =
 	"usage: posture-input describe FILE\n"
@@ -53,6 +54,7 @@ static const char usage[] =
 	"       posture-input record hidraw:VID:PID[:IFACE]|hidraw:PATH [-o FILE] [--count N]\n"
 	"                            [--seconds S] [--decode]\n"
 	"       posture-input record can:IFACE[:MAP] [-o FILE] [--count N] [--seconds S] [--decode]\n"
+	"       posture-input record usb:VID:PID[:IFACE] [-o FILE] [--count N] [--seconds S] [--decode]\n"
 	"       posture-input list [SPEC...]\n"
 	"\n"
 	"describe: a HID report descriptor's input reports, fields, usages and bit offsets;\n"
@@ -74,6 +76,9 @@ static const char usage[] =
 	"  the daemon's hidraw backend into a hid-recorder file: each device's descriptor, then\n"
 	"  its reports (E: lines, times from the first report; D: lines when several); --count\n"
 	"  counts reports. --decode prints the backend's events instead.\n"
+	"record usb:...: the HID interfaces of that USB device through the daemon's libusb\n"
+	"  backend (the kernel's driver detached meanwhile) into a hid-recorder file, as\n"
+	"  record hidraw: writes one.\n"
 	"record can: the frames of a CAN interface into a candump -l log, as candump -l writes\n"
 	"  it (the kernel's receive times, wall clock); with MAP only the map's ids (the kernel\n"
 	"  filters the rest), and --decode prints the panel's events instead.\n"
@@ -567,7 +572,8 @@ record_parse(int argc, char **argv, struct record_opts *dest)
 		} else if (!strncmp(argv[i], "evdev:", 6) && argv[i][6] && !dest->path) {
 			dest->spec = argv[i];
 			dest->path = argv[i] + 6;
-		} else if ((!strncmp(argv[i], "hidraw:", 7) || !strncmp(argv[i], "can:", 4)) &&
+		} else if ((!strncmp(argv[i], "hidraw:", 7) || !strncmp(argv[i], "can:", 4) ||
+			    !strncmp(argv[i], "usb:", 4)) &&
 			   strchr(argv[i], ':')[1] && !dest->path) {
 			dest->spec = dest->path = argv[i];
 		} else {
@@ -682,6 +688,7 @@ record_end(struct record_session *r)
 
 static int record_hidraw(const struct record_opts *o);
 static int record_can(const struct record_opts *o);
+static int record_usb(const struct record_opts *o);
 
 static int
 record(int argc, char **argv)
@@ -693,6 +700,8 @@ record(int argc, char **argv)
 		return record_hidraw(&o);
 	if (!strncmp(o.spec ? o.spec : "", "can:", 4))
 		return record_can(&o);
+	if (!strncmp(o.spec ? o.spec : "", "usb:", 4))
+		return record_usb(&o);
 
 	char err[512];
 	static struct evdev_dev d;
@@ -909,6 +918,75 @@ record_hidraw(const struct record_opts *o)
 	/* what is still held is released, as the daemon does */
 	for (int k = 0; k < n; k++)
 		hidraw_dev_close(&d[k], record_now_us(), &q);
+	record_drain(&q, sink.t0, sink.decode);
+	return record_end(&r);
+}
+
+/* ---- record usb: HID interfaces through libusb into a hid-recorder file ---------- */
+
+static int
+record_usb(const struct record_opts *o)
+{
+	if (o->fd >= 0) {
+		fputs(usage, stderr);
+		return 2;
+	}
+	/* the daemon's own path: the device set over the usb backend alone */
+	static const struct input_backend *const only_usb[] = { &input_backend_usb };
+	static struct input_devs s;
+	static struct input_queue q;
+	input_queue_init(&q);
+	input_devs_init(&s, only_usb, 1, 0, &q);
+	char err[512];
+	int n = input_devs_open(&s, o->spec, record_now_us(), err, sizeof err);
+	if (n < 0) {
+		fprintf(stderr, "posture-input: %s\n", err);
+		return 2;
+	}
+	for (int k = 0; k < s.nskip; k++)
+		fprintf(stderr, "posture-input: %s skipped: %s\n", s.skip[k].what, s.skip[k].why);
+	if (n == 0) {
+		fprintf(stderr, "posture-input: %s: nothing to record\n", o->spec);
+		return 1;
+	}
+	struct record_session r;
+	if (record_begin(&r, o->out, o->seconds) < 0) {
+		input_devs_close_all(&s, 0, NULL);
+		return 1;
+	}
+	struct record_hid_sink sink = { .out = r.out, .first = 1, .last = -1, .count = o->count,
+					.decode = o->decode, .several = n > 1 };
+	static struct record_hid_tap taps[INPUT_DEVS_MAX];
+	for (int i = 0, k = 0; i < INPUT_DEVS_MAX; i++) {
+		if (!s.place[i].be)
+			continue;
+		taps[i] = (struct record_hid_tap){ .sink = &sink, .index = k };
+		usb_dev_set_tap(s.place[i].dev, record_hid_on_report, &taps[i]);
+		if (!sink.decode) {
+			static struct rec_hid_device rd;
+			usb_dev_describe(s.place[i].dev, &rd);
+			rec_hid_write_device(sink.out, &rd, sink.several ? k : -1);
+		}
+		k++;
+	}
+	fflush(sink.out);
+	while (input_devs_count(&s) && (!sink.count || sink.written < sink.count)) {
+		struct pollfd p[INPUT_DEVS_POLL_MAX];
+		int tags[INPUT_DEVS_POLL_MAX];
+		int np = input_devs_pollfds(&s, p, tags, INPUT_DEVS_POLL_MAX);
+		if (record_wait(&r, p, np) < 0)
+			break;
+		for (int j = 0; j < np; j++)
+			if (p[j].revents && input_devs_ready(&s, tags[j], record_now_us(), &q) < 0) {
+				fprintf(stderr, "posture-input: a device went away\n");
+				r.rc = 1;
+			}
+		record_drain(&q, sink.t0, sink.decode);
+		fflush(sink.out);
+	}
+	fprintf(stderr, "posture-input: %lu reports\n", sink.written);
+	/* what is still held is released, as the daemon does */
+	input_devs_close_all(&s, record_now_us(), &q);
 	record_drain(&q, sink.t0, sink.decode);
 	return record_end(&r);
 }

@@ -46,6 +46,7 @@
 
 #include "devices/input_devs.h"
 #include "devices/queue.h"
+#include "devices/rec_hid.h"
 #include "devices/usb_dev.h"
 #include "tests/guest/guest_check.h"
 
@@ -903,6 +904,77 @@ out:
 	close(g);
 }
 
+/* ---- posture-input record usb: ---------------------------------------- */
+
+/*
+ * The recorder, a separate process as a person runs it, records both
+ * interfaces while the script plays: its file must give back both
+ * descriptors as the gadget declares them and every report in order, and
+ * usbhid must have the interfaces again once it exits.
+ */
+static void
+record_check(int g[2])
+{
+	const char *tool = "/usr/local/bin/posture-input", *file = "/tmp/usb.hid";
+	if (access(tool, X_OK) != 0) {
+		fail("record", "%s is not in the guest (run with --exe)", tool);
+		return;
+	}
+	char count[16];
+	snprintf(count, sizeof count, "%d", NSCRIPT);
+	pid_t pid = fork();
+	if (pid == 0) {
+		execl(tool, tool, "record", "usb:" VID ":" PID, "-o", file, "--count", count,
+		      "--seconds", "30", (char *)NULL);
+		_exit(127);
+	}
+	if (pid < 0 || wait_kernel_nodes(0, 5000) < 0) {
+		fail("record", "the recorder did not take the interfaces");
+		return;
+	}
+	sleep_ms(300); /* its transfers submitted */
+	for (int k = 0; k < NSCRIPT; k++) {
+		const struct report *r = &script[k];
+		if (gadget_write(g[r->kbd], r->b, r->kbd ? 8 : 4, NULL) < 0) {
+			fail("record", "write hidg%d: %s", r->kbd, strerror(errno));
+			break;
+		}
+		sleep_ms(30);
+	}
+	int status = 0;
+	waitpid(pid, &status, 0);
+	if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+		fail("record", "the recorder ended with status %d", status);
+		return;
+	}
+	static struct rec_hid rec;
+	char err[256];
+	if (rec_hid_read(file, &rec, err, sizeof err) < 0) {
+		fail("record", "%s", err);
+		return;
+	}
+	int good = rec.ndevices == 2 && rec.nevents == (size_t)NSCRIPT &&
+		   rec.devices[0].desc_len == sizeof mouse_rdesc &&
+		   !memcmp(rec.devices[0].desc, mouse_rdesc, sizeof mouse_rdesc) &&
+		   rec.devices[1].desc_len == sizeof keyboard_rdesc &&
+		   !memcmp(rec.devices[1].desc, keyboard_rdesc, sizeof keyboard_rdesc) &&
+		   rec.devices[0].vid == 0x1d6b && rec.devices[0].pid == 0x0104;
+	for (int k = 0; good && k < NSCRIPT; k++) {
+		const struct report *r = &script[k];
+		size_t n = r->kbd ? 8 : 4;
+		good = rec.events[k].device == r->kbd && rec.events[k].len == n &&
+		       !memcmp(rec.events[k].bytes, r->b, n);
+	}
+	if (!good)
+		fail("record", "%s: %u devices, %zu reports; not the gadget's descriptors and the "
+		     "script's %d reports", file, rec.ndevices, rec.nevents, NSCRIPT);
+	else
+		ok("record: posture-input record usb: gave both descriptors and all %d reports", NSCRIPT);
+	rec_hid_free(&rec);
+	if (wait_kernel_nodes(1, 3000) < 0)
+		fail("record", "usbhid did not get the interfaces back after the recorder");
+}
+
 int
 main(void)
 {
@@ -959,6 +1031,7 @@ main(void)
 		fail("re-attach", "no hidraw/evdev nodes for the interfaces after close");
 	else
 		ok("re-attach: usbhid has both interfaces again after close (hidraw and evdev nodes)");
+	record_check(g);
 
 	/* unplug mid-press */
 	n = open_spec("usb:" VID ":" PID);
