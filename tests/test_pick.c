@@ -16,6 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "draw/demo_scene.h"
+#include "draw/render.h"
 #include "draw/tess.h"
 #include "draw/view.h"
 #include "figure/human.h"
@@ -460,6 +462,107 @@ test_pick_allocates_nothing(void **unused)
 	posed_free(&p);
 }
 
+/* ---- picking hits what is drawn ------------------------------------------------ */
+
+#define PW 320
+#define PH 240
+
+/* the picture of the seated scene (no floor, no icons), or of nothing, packed RGBA */
+static void
+picture(struct render *r, struct drawlist *dl, const struct demo_scene *sc,
+	const struct camera *cam, const int base[2], int figures, uint8_t *dest)
+{
+	view_begin(dl, cam, PW, PH);
+	dl->floor = 0;
+	if (figures) {
+		view_add_figure(dl, sc->human, sc->hs, base[0]);
+		view_add_figure(dl, sc->seat, sc->ss, base[1]);
+	}
+	struct frame f;
+	assert_int_equal(render_frame(r, dl, 0, &f), 0);
+	for (int y = 0; y < PH; y++)
+		memcpy(dest + 4 * PW * y, f.rgba + (size_t)f.stride * y, 4 * PW);
+}
+
+static void
+test_pick_hits_what_is_drawn(void **unused)
+{
+	(void)unused;
+	/*
+	 * Every pixel of the driver scene: the mouse line through its centre
+	 * hits a figure exactly when the renderer drew one there (the picture
+	 * differs from the empty one). Only silhouette pixels, where a
+	 * neighbour disagrees, may go either way.
+	 */
+	char err[256];
+	struct demo_scene sc;
+	assert_int_equal(demo_scene_make(&sc, "seated", "src/figure/library/vehicle_seat.fig", err,
+					 sizeof err), 0);
+	struct render_def d = render_default_def();
+	d.max_w = PW;
+	d.max_h = PH;
+	d.samples = 0;
+	d.shadows = 0;
+	struct render *r = render_make(&d, err, sizeof err);
+	if (!r) {
+		demo_scene_free(&sc);
+		skip();
+	}
+	struct drawlist *dl = view_drawlist_make();
+	int base[2] = { render_add_model(r, sc.human, err, sizeof err),
+			render_add_model(r, sc.seat, err, sizeof err) };
+	struct camera cam;
+	demo_scene_camera(&sc, &cam);
+	uint8_t *full = malloc(4 * PW * PH), *empty = malloc(4 * PW * PH);
+	unsigned char *drawn = malloc(PW * PH), *hit = malloc(PW * PH);
+	picture(r, dl, &sc, &cam, base, 1, full);
+	picture(r, dl, &sc, &cam, base, 0, empty);
+
+	struct pick_model *ph = pick_model_make(sc.human), *ps = pick_model_make(sc.seat);
+	struct pick_target t[2] = { { ph, sc.human, sc.hs }, { ps, sc.seat, sc.ss } };
+	int covered = 0;
+	for (int y = 0; y < PH; y++)
+		for (int x = 0; x < PW; x++) {
+			struct ray ray;
+			struct pick_hit h;
+			size_t i = (size_t)y * PW + x;
+			drawn[i] = memcmp(full + 4 * i, empty + 4 * i, 3) != 0;
+			assert_int_equal(mouse_line(&cam, PW, PH, x + 0.5, y + 0.5, &ray), 0);
+			hit[i] = (unsigned char)pick_scene(t, 2, &ray, 0, &h);
+			covered += drawn[i];
+		}
+	int inside = 0, wrong = 0;
+	for (int y = 1; y < PH - 1; y++)
+		for (int x = 1; x < PW - 1; x++) {
+			size_t i = (size_t)y * PW + x;
+			int edge = 0;
+			for (int dy = -1; dy <= 1; dy++)
+				for (int dx = -1; dx <= 1; dx++)
+					edge |= drawn[i + dy * PW + dx] != drawn[i];
+			if (edge)
+				continue;
+			inside++;
+			if (hit[i] != drawn[i]) {
+				if (wrong < 5)
+					print_message("pixel (%d, %d): drawn %d, hit %d\n", x, y, drawn[i],
+						      hit[i]);
+				wrong++;
+			}
+		}
+	assert_true(covered > PW * PH / 10); /* the scene fills a good part of the picture */
+	assert_true(inside > PW * PH / 2);
+	assert_int_equal(wrong, 0);
+	free(full);
+	free(empty);
+	free(drawn);
+	free(hit);
+	pick_model_free(ph);
+	pick_model_free(ps);
+	view_drawlist_free(dl);
+	render_free(r);
+	demo_scene_free(&sc);
+}
+
 /* ---- the mouse line ---------------------------------------------------------- */
 
 static double
@@ -539,6 +642,7 @@ main(void)
 		cmocka_unit_test(test_nearest_figure_wins),
 		cmocka_unit_test(test_boxes_never_reject_a_hit),
 		cmocka_unit_test(test_pick_allocates_nothing),
+		cmocka_unit_test(test_pick_hits_what_is_drawn),
 		cmocka_unit_test(test_mouse_line_by_hand),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
