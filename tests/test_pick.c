@@ -289,6 +289,7 @@ test_capsule(void **unused)
 	assert_int_equal(pick_figure(o.pm, o.m, o.s, &r, 0, &h), 1);
 	assert_near(h.distance, 6 - 1.3, 1e-6);
 	assert_true(h.normal[1] > cos(25 * DEG));
+	assert_int_equal(h.part, 1); /* the upper cap */
 	assert_string_equal(o.m->site_name[h.site], "b");
 
 	/* the lower cap is the upper one turned over: its outside still faces out */
@@ -296,6 +297,7 @@ test_capsule(void **unused)
 	assert_int_equal(pick_figure(o.pm, o.m, o.s, &r, 0, &h), 1);
 	assert_near(h.distance, 4 + 0.7, 1e-6);
 	assert_true(h.normal[1] < -cos(25 * DEG));
+	assert_int_equal(h.part, 2);
 	assert_string_equal(o.m->site_name[h.site], "a");
 
 	/* the tube's side, at a vertex column (x = r, z = 0) */
@@ -303,6 +305,7 @@ test_capsule(void **unused)
 	assert_int_equal(pick_figure(o.pm, o.m, o.s, &r, 0, &h), 1);
 	assert_near(h.distance, 5 - 0.1, 1e-6);
 	assert_true(h.normal[0] > cos(10 * DEG));
+	assert_int_equal(h.part, 0); /* the tube */
 	assert_near(h.normal[1], 0, 1e-6);
 	one_free(&o);
 }

@@ -25,6 +25,7 @@ hit_json(const struct env *e, const struct pick_hit *h, int slot)
 	json_object_set_new(o, "normal", cmd_vec(h->normal, 3));
 	json_object_set_new(o, "distance", json_real(h->distance));
 	json_object_set_new(o, "geom", json_integer(h->geom));
+	json_object_set_new(o, "part", json_integer(h->part));
 	json_object_set_new(o, "face", json_integer(h->face));
 	json_t *edge = json_array();
 	json_array_append_new(edge, json_integer(h->edge[0]));

@@ -164,6 +164,7 @@ pick_model_make(const struct model *m)
 				struct mesh_ref r = mesh_of_part(&part[k], m, builtin);
 				struct pick_part *pp = &pm->part[pm->npart++];
 				pp->geom = g;
+				pp->index = k;
 				add_part(pm, &part[k], &r, pp);
 				if (pp->ntri) {
 					box_grow(lo, hi, pp->lo);
@@ -291,6 +292,7 @@ describe(const struct pick_model *pm, const struct model *m, const struct state 
 
 	dest->segment = seg;
 	dest->geom = pp->geom;
+	dest->part = pp->index;
 	dest->face = tri - pp->tri0;
 	dest->distance = t;
 	for (int i = 0; i < 3; i++)

@@ -20,6 +20,7 @@
 
 struct pick_part {
 	int geom;           /* the model's geom this part draws */
+	int index;          /* which of the geom's parts (view_geom_parts' order) */
 	int tri0, ntri;     /* its triangles in the pick model's arrays */
 	double lo[3], hi[3]; /* its bounding box, segment frame */
 };
@@ -41,7 +42,8 @@ void pick_model_free(struct pick_model *pm);
 struct pick_hit {
 	int figure;       /* which of the targets (pick_scene), else 0 */
 	int segment, geom;
-	int face;         /* the triangle's number in its part's mesh (an OBJ mesh's face number) */
+	int part;         /* which of the geom's parts: a capsule is tube 0, caps 1 and 2 */
+	int face;         /* the triangle's number in the part's mesh (an OBJ mesh's face number) */
 	int edge[2];      /* vertex numbers of the triangle's edge nearest the point */
 	int vertex;       /* vertex number of the triangle's corner nearest the point */
 	int site;         /* the segment's site nearest the point, -1 when it has none */
