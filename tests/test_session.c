@@ -117,6 +117,43 @@ test_session_round_trip_is_exact(void **unused)
 	env_clear(&b);
 }
 
+/* a view's field of view round-trips to the bit; a view line written before it had one gets 40 deg */
+static void
+test_view_field_of_view(void **unused)
+{
+	(void)unused;
+	static struct env a, b;
+	env_init(&a);
+	env_init(&b);
+	struct env_view v = { .used = 1, .width = 320, .height = 240, .icons = 1,
+			      .eye = { 0, 1.2, 3 }, .target = { 0, 1, 0 }, .fovy_deg = 0.1 + 27.2 };
+	snprintf(v.name, sizeof v.name, "front");
+	a.view[0] = v;
+	size_t la;
+	char *ta = session_to_string(&a, &la), err[300];
+	assert_non_null(ta);
+	assert_int_equal(session_read(ta, la, ".", NULL, &b, err, sizeof err), 0);
+	assert_true(b.view[0].fovy_deg == v.fovy_deg);
+	env_clear(&b);
+	free(ta);
+
+	const char *old = "session 1\nview front width=320 height=240 icons=1 eye=0,1.2,3 "
+			  "target=0,1,0\nend\n";
+	assert_int_equal(session_read(old, strlen(old), ".", NULL, &b, err, sizeof err), 0);
+	assert_true(b.view[0].fovy_deg == 40);
+	env_clear(&b);
+	const char *bad[] = {
+		"session 1\nview front width=320 height=240 icons=1 eye=0,1.2,3 target=0,1,0 fovy=0\nend\n",
+		"session 1\nview front width=320 height=240 icons=1 eye=0,1.2,3 target=0,1,0 fovy=x\nend\n",
+		"session 1\nview front width=320 height=240 icons=1 eye=0,1.2,3 target=0,1,0 zoom=2\nend\n",
+	};
+	for (int i = 0; i < 3; i++) {
+		assert_int_equal(session_read(bad[i], strlen(bad[i]), ".", NULL, &b, err, sizeof err),
+				 -1);
+		env_clear(&b);
+	}
+}
+
 /* a behaving human whose hand grabbed another figure: the attachment round-trips */
 static void
 test_attachments_round_trip_and_bad_ones_are_refused(void **unused)
@@ -239,6 +276,7 @@ main(void)
 		cmocka_unit_test(test_words_split_quotes_tags_and_limits),
 		cmocka_unit_test(test_numbers_take_units_and_refuse_non_finite),
 		cmocka_unit_test(test_session_round_trip_is_exact),
+		cmocka_unit_test(test_view_field_of_view),
 		cmocka_unit_test(test_attachments_round_trip_and_bad_ones_are_refused),
 		cmocka_unit_test(test_bad_sessions_load_nothing),
 		cmocka_unit_test(test_posture_file_applies_by_name_and_checks_first),

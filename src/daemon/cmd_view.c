@@ -30,6 +30,21 @@ read_size(struct cmd_ctx *c, const char *key, int *dest)
 	return 0;
 }
 
+/* fovy=DEG: the vertical field of view in degrees (a bare number), 1 to 170 */
+static int
+read_fovy(struct cmd_ctx *c, double *dest)
+{
+	const char *v = cmd_key(c, "fovy");
+	double d;
+	if (v && (words_number(v, UNIT_NONE, &d) < 0 || d < ENV_VIEW_FOVY_MIN ||
+		  d > ENV_VIEW_FOVY_MAX))
+		return cmd_fail(c, "bad-number", "fovy: degrees from %g to %g", ENV_VIEW_FOVY_MIN,
+				ENV_VIEW_FOVY_MAX);
+	if (v)
+		*dest = d;
+	return 0;
+}
+
 static int
 only_keys(struct cmd_ctx *c, int from, const char *const *keys, int n)
 {
@@ -55,7 +70,7 @@ aim_ok(struct cmd_ctx *c, const double eye[3], const double target[3])
 int
 cmd_add_view(struct cmd_ctx *c)
 {
-	static const char *const keys[] = { "width", "height", "eye", "target", "icons" };
+	static const char *const keys[] = { "width", "height", "eye", "target", "icons", "fovy" };
 	struct env *e = &c->d->env;
 	const char *name = c->argv[0];
 	if (!words_is_name(name))
@@ -63,12 +78,14 @@ cmd_add_view(struct cmd_ctx *c)
 	if (env_find_view(e, name) >= 0)
 		return cmd_fail(c, "exists", "a view named '%s' exists", name);
 	struct env_view v = { .used = 1, .width = 640, .height = 480, .icons = 1,
-			      .eye = { 2.2, 1.5, 3.2 }, .target = { 0, 0.95, 0 } };
+			      .eye = { 2.2, 1.5, 3.2 }, .target = { 0, 0.95, 0 },
+			      .fovy_deg = ENV_VIEW_FOVY_DEG };
 	snprintf(v.name, sizeof v.name, "%s", name);
 	const char *icons = cmd_key(c, "icons");
-	if (only_keys(c, 1, keys, 5) < 0 || read_size(c, "width", &v.width) < 0 ||
+	if (only_keys(c, 1, keys, 6) < 0 || read_size(c, "width", &v.width) < 0 ||
 	    read_size(c, "height", &v.height) < 0 || read_point(c, "eye", v.eye) < 0 ||
-	    read_point(c, "target", v.target) < 0 || aim_ok(c, v.eye, v.target) < 0)
+	    read_point(c, "target", v.target) < 0 || aim_ok(c, v.eye, v.target) < 0 ||
+	    read_fovy(c, &v.fovy_deg) < 0)
 		return -1;
 	if (icons && strcmp(icons, "0") && strcmp(icons, "1"))
 		return cmd_fail(c, "bad-argument", "icons=0|1");
@@ -94,19 +111,25 @@ view_of(struct cmd_ctx *c, const char *name)
 int
 cmd_set_camera(struct cmd_ctx *c)
 {
-	static const char *const keys[] = { "eye", "target" };
+	static const char *const keys[] = { "eye", "target", "fovy" };
 	int v = view_of(c, c->argv[0]);
-	if (v < 0 || only_keys(c, 1, keys, 2) < 0)
+	if (v < 0 || only_keys(c, 1, keys, 3) < 0)
 		return -1;
 	struct env_view *w = &c->d->env.view[v];
-	double eye[3], target[3];
-	if (!cmd_key(c, "eye") || !cmd_key(c, "target"))
-		return cmd_fail(c, "arity", "set camera VIEW eye=X,Y,Z target=X,Y,Z");
-	if (read_point(c, "eye", eye) < 0 || read_point(c, "target", target) < 0 ||
-	    aim_ok(c, eye, target) < 0)
+	double eye[3], target[3], fovy = w->fovy_deg;
+	int aim = cmd_key(c, "eye") || cmd_key(c, "target");
+	if ((aim && (!cmd_key(c, "eye") || !cmd_key(c, "target"))) || (!aim && !cmd_key(c, "fovy")))
+		return cmd_fail(c, "arity", "set camera VIEW [eye=X,Y,Z target=X,Y,Z] [fovy=DEG]");
+	if (aim && (read_point(c, "eye", eye) < 0 || read_point(c, "target", target) < 0 ||
+		    aim_ok(c, eye, target) < 0))
 		return -1;
-	memcpy(w->eye, eye, sizeof eye);
-	memcpy(w->target, target, sizeof target);
+	if (read_fovy(c, &fovy) < 0)
+		return -1;
+	if (aim) {
+		memcpy(w->eye, eye, sizeof eye);
+		memcpy(w->target, target, sizeof target);
+	}
+	w->fovy_deg = fovy;
 	return 0;
 }
 
@@ -134,6 +157,7 @@ cmd_list_views(struct cmd_ctx *c)
 		json_object_set_new(o, "height", json_integer(v->height));
 		json_object_set_new(o, "eye", cmd_vec(v->eye, 3));
 		json_object_set_new(o, "target", cmd_vec(v->target, 3));
+		json_object_set_new(o, "fovy", json_real(v->fovy_deg));
 		json_object_set_new(o, "icons", json_boolean(v->icons));
 		json_array_append_new(list, o);
 	}

@@ -1,4 +1,4 @@
-/* daemon.c - undo and redo checkpoints */
+/* daemon.c - undo and redo checkpoints, the pick models */
 #include "daemon/daemon.h"
 
 #include <stdlib.h>
@@ -24,4 +24,56 @@ daemon_checkpoints_push(struct checkpoints *c, char *text, size_t len)
 	c->text[c->n] = text;
 	c->len[c->n] = len;
 	c->n++;
+}
+
+static uint64_t
+fnv(uint64_t h, const void *p, size_t n)
+{
+	const unsigned char *b = p;
+	for (size_t i = 0; i < n; i++)
+		h = (h ^ b[i]) * 0x100000001b3ull;
+	return h;
+}
+
+/* the geoms and the sizes of the meshes: cheap, and what a pick model is made of */
+static uint64_t
+model_print(const struct model *m)
+{
+	size_t g = (size_t)m->ngeom;
+	uint64_t h = fnv(0xcbf29ce484222325ull, &m->nseg, sizeof m->nseg);
+	h = fnv(h, &m->ngeom, sizeof m->ngeom);
+	h = fnv(h, &m->nvert, sizeof m->nvert);
+	h = fnv(h, &m->nface, sizeof m->nface);
+	h = fnv(h, m->geom_seg, g * sizeof *m->geom_seg);
+	h = fnv(h, m->geom_kind, g * sizeof *m->geom_kind);
+	h = fnv(h, m->geom_size, 3 * g * sizeof *m->geom_size);
+	h = fnv(h, m->geom_pos, 3 * g * sizeof *m->geom_pos);
+	h = fnv(h, m->geom_quat, 4 * g * sizeof *m->geom_quat);
+	return fnv(h, m->geom_mesh, g * sizeof *m->geom_mesh);
+}
+
+const struct pick_model *
+daemon_pick_model(struct daemon *d, int fig)
+{
+	struct pick_cache *pc = &d->picks;
+	const struct env_figure *f = &d->env.fig[fig];
+	uint64_t print = model_print(f->model);
+	if (pc->pm[fig] && pc->gen[fig] == f->gen && pc->model[fig] == f->model &&
+	    pc->print[fig] == print)
+		return pc->pm[fig];
+	pick_model_free(pc->pm[fig]);
+	pc->pm[fig] = pick_model_make(f->model);
+	pc->gen[fig] = f->gen;
+	pc->model[fig] = f->model;
+	pc->print[fig] = print;
+	return pc->pm[fig];
+}
+
+void
+daemon_picks_free(struct daemon *d)
+{
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		pick_model_free(d->picks.pm[i]);
+		d->picks.pm[i] = NULL;
+	}
 }

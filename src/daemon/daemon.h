@@ -12,11 +12,24 @@
 #include "devices/input_devs.h"
 #include "devices/queue.h"
 #include "draw/frame.h"
+#include "interact/pick.h"
 #include "pose/env.h"
 
 #define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
 #define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
 #define VIEW_MAX_H 1200
+
+/*
+ * Each figure's meshes for picking, built when a figure is first picked.
+ * A slot's model is rebuilt when its generation or model changes (a
+ * session load or undo makes new models under old generations).
+ */
+struct pick_cache {
+	struct pick_model *pm[ENV_MAX_FIGURES];
+	const struct model *model[ENV_MAX_FIGURES];
+	uint32_t gen[ENV_MAX_FIGURES];
+	uint64_t print[ENV_MAX_FIGURES]; /* a hash of the model's geoms, also compared */
+};
 
 /* a bounded stack of session texts */
 struct checkpoints {
@@ -71,11 +84,20 @@ struct daemon {
 	/* the kiosk grab (grab -1: unchanged) and the pointer gain (0: unchanged); NULL: none */
 	int (*set_input)(struct daemon *d, int grab, double gain);
 	double pointer_gain;
+	struct pick_cache picks;
 };
 
 /* frees the undo and redo texts */
 void daemon_checkpoints_clear(struct checkpoints *c);
 /* pushes a text (taking ownership); drops the oldest when full */
 void daemon_checkpoints_push(struct checkpoints *c, char *text, size_t len);
+
+/*
+ * The pick model of figure slot fig (occupied), built or rebuilt when its
+ * model is new to the cache; NULL when out of memory.
+ */
+const struct pick_model *daemon_pick_model(struct daemon *d, int fig);
+/* frees every cached pick model */
+void daemon_picks_free(struct daemon *d);
 
 #endif

@@ -551,6 +551,7 @@ out:
 	env_clear(&L->d.env);
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
+	daemon_picks_free(&L->d);
 	input_devs_close_all(&L->devs, real_now(NULL), &L->input);
 	hotplug_close(&L->hotplug);
 	events_free(&L->events);

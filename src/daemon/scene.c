@@ -49,8 +49,7 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	if (scene_ready(sc, err, errlen) < 0)
 		return -1;
 	struct camera cam;
-	view_camera_default(&cam);
-	view_camera_aim(&cam, vw->eye, vw->target);
+	view_camera_of_view(vw, &cam);
 	view_begin(sc->dl, &cam, vw->width, vw->height);
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
 		struct env_figure *f = &e->fig[i];

@@ -132,7 +132,7 @@ session_write(const struct env *e, FILE *f)
 		write_vec(f, v->eye, 3);
 		fprintf(f, " target=");
 		write_vec(f, v->target, 3);
-		fprintf(f, "\n");
+		fprintf(f, " fovy=%.17g\n", v->fovy_deg);
 	}
 	fprintf(f, "end\n");
 	return ferror(f) ? -1 : 0;
@@ -466,19 +466,25 @@ read_attach(struct reader *r, struct env *e)
 	return 0;
 }
 
+/* "view NAME width= height= icons= eye= target= [fovy=]": fovy (degrees) came later */
 static int
 read_view(struct reader *r, struct env *e)
 {
 	struct words *w = &r->w;
 	unsigned long wd, ht, icons;
-	struct env_view v = { .used = 1 };
-	if (w->n != 7 || !words_is_name(w->w[1]) || env_find_view(e, w->w[1]) >= 0 ||
+	struct env_view v = { .used = 1, .fovy_deg = ENV_VIEW_FOVY_DEG };
+	const char *fovy = arg(w, 2, "fovy");
+	if ((w->n != 7 && !(w->n == 8 && fovy)) || !words_is_name(w->w[1]) ||
+	    env_find_view(e, w->w[1]) >= 0 ||
 	    read_uint(arg(w, 2, "width"), 16384, &wd) < 0 || wd < 16 ||
 	    read_uint(arg(w, 2, "height"), 16384, &ht) < 0 || ht < 16 ||
 	    read_uint(arg(w, 2, "icons"), 1, &icons) < 0 ||
 	    words_list(arg(w, 2, "eye"), UNIT_NONE, 3, v.eye) < 0 ||
-	    words_list(arg(w, 2, "target"), UNIT_NONE, 3, v.target) < 0)
-		return fail(r, "expected: view NAME width=W height=H icons=0|1 eye=X,Y,Z target=X,Y,Z");
+	    words_list(arg(w, 2, "target"), UNIT_NONE, 3, v.target) < 0 ||
+	    (fovy && (words_number(fovy, UNIT_NONE, &v.fovy_deg) < 0 ||
+		      v.fovy_deg < ENV_VIEW_FOVY_MIN || v.fovy_deg > ENV_VIEW_FOVY_MAX)))
+		return fail(r, "expected: view NAME width=W height=H icons=0|1 eye=X,Y,Z target=X,Y,Z "
+			       "[fovy=DEG]");
 	snprintf(v.name, sizeof v.name, "%s", w->w[1]);
 	v.width = (int)wd;
 	v.height = (int)ht;

@@ -142,32 +142,9 @@ static int
 builtin_meshes(struct render *r, int fine)
 {
 	struct tess_mesh t;
-	int n = fine ? 20 : 10, base = r->nmesh;
+	int base = r->nmesh;
 	for (int k = 0; k < VIEW_MESH_BUILTIN; k++) {
-		int rc = -1;
-		switch ((enum view_mesh)k) {
-		case VIEW_MESH_SPHERE:
-			rc = tess_sphere(n, n / 2 + 2, &t);
-			break;
-		case VIEW_MESH_HEMISPHERE:
-			rc = tess_hemisphere(n, n / 4, &t);
-			break;
-		case VIEW_MESH_TUBE:
-			rc = tess_cylinder(n, 0, &t);
-			break;
-		case VIEW_MESH_CYLINDER:
-			rc = tess_cylinder(n, 1, &t);
-			break;
-		case VIEW_MESH_CONE:
-			rc = tess_cone(n, &t);
-			break;
-		case VIEW_MESH_BOX:
-			rc = tess_box(&t);
-			break;
-		case VIEW_MESH_BUILTIN:
-			break;
-		}
-		if (rc)
+		if (view_mesh_tess((enum view_mesh)k, fine, &t))
 			return -1;
 		if (keep(r, &t) != base + k) {
 			tess_free(&t);

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "draw/tess.h"
 #include "draw/view.h"
 #include "draw/view_internal.h"
 
@@ -50,6 +51,15 @@ view_camera_aim(struct camera *c, const double eye[3], const double target[3])
 	}
 	c->vrd = d;
 	return 0;
+}
+
+void
+view_camera_of_view(const struct env_view *v, struct camera *dest)
+{
+	view_camera_default(dest);
+	view_camera_aim(dest, v->eye, v->target);
+	if (v->fovy_deg > 0)
+		dest->fovy = v->fovy_deg * M_PI / 180;
 }
 
 void
@@ -199,51 +209,95 @@ add_unit(struct drawlist *dl, int mesh, const struct xform *x, const double s[3]
 }
 
 int
+view_geom_parts(const struct model *m, int g, struct view_part dest[VIEW_GEOM_PARTS_MAX])
+{
+	const double *sz = &m->geom_size[3 * g];
+	struct view_part *p = &dest[0];
+	mathx_quat_to_mat(&m->geom_quat[4 * g], p->xf.r);
+	memcpy(p->xf.p, &m->geom_pos[3 * g], sizeof p->xf.p);
+	p->model_mesh = -1;
+	switch ((enum geom_kind)m->geom_kind[g]) {
+	case GEOM_BOX:
+		p->mesh = VIEW_MESH_BOX;
+		v_set(p->scale, sz[0], sz[1], sz[2]);
+		return 1;
+	case GEOM_ELLIPSOID:
+		p->mesh = VIEW_MESH_SPHERE;
+		v_set(p->scale, sz[0], sz[1], sz[2]);
+		return 1;
+	case GEOM_CYLINDER:
+		p->mesh = VIEW_MESH_CYLINDER;
+		v_set(p->scale, sz[0], sz[1], sz[0]);
+		return 1;
+	case GEOM_CAPSULE:
+		/* a tube and two hemispheres, the lower one turned over (about x) */
+		p->mesh = VIEW_MESH_TUBE;
+		v_set(p->scale, sz[0], sz[1], sz[0]);
+		for (int k = 1; k < 3; k++) {
+			struct view_part *c = &dest[k];
+			double sign = k == 1 ? 1 : -1;
+			*c = *p;
+			c->mesh = VIEW_MESH_HEMISPHERE;
+			v_set(c->scale, sz[0], sz[0], sz[0]);
+			for (int i = 0; i < 3; i++) {
+				c->xf.p[i] = p->xf.p[i] + sign * p->xf.r[3 * i + 1] * sz[1] / 2;
+				c->xf.r[3 * i + 1] = sign * p->xf.r[3 * i + 1];
+				c->xf.r[3 * i + 2] = sign * p->xf.r[3 * i + 2];
+			}
+		}
+		return 3;
+	case GEOM_MESH:
+		p->mesh = VIEW_MESH_BUILTIN;
+		p->model_mesh = m->geom_mesh[g];
+		v_set(p->scale, sz[0], sz[1], sz[2]);
+		return 1;
+	}
+	return 0;
+}
+
+int
+view_mesh_tess(enum view_mesh k, int fine, struct tess_mesh *dest)
+{
+	int n = fine ? 20 : 10;
+	switch (k) {
+	case VIEW_MESH_SPHERE:
+		return tess_sphere(n, n / 2 + 2, dest);
+	case VIEW_MESH_HEMISPHERE:
+		return tess_hemisphere(n, n / 4, dest);
+	case VIEW_MESH_TUBE:
+		return tess_cylinder(n, 0, dest);
+	case VIEW_MESH_CYLINDER:
+		return tess_cylinder(n, 1, dest);
+	case VIEW_MESH_CONE:
+		return tess_cone(n, dest);
+	case VIEW_MESH_BOX:
+		return tess_box(dest);
+	case VIEW_MESH_BUILTIN:
+		break;
+	}
+	return -1;
+}
+
+int
 view_add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base)
 {
 	int before = dl->ninst;
 	for (int g = 0; g < m->ngeom; g++) {
 		int seg = m->geom_seg[g];
-		const double *sz = &m->geom_size[3 * g];
 		const float *rgba = &m->seg_rgba[4 * seg];
-		struct xform loc, x;
-		mathx_quat_to_mat(&m->geom_quat[4 * g], loc.r);
-		memcpy(loc.p, &m->geom_pos[3 * g], sizeof loc.p);
-		xform_mul(&s->seg_xf[seg], &loc, &x);
-		switch ((enum geom_kind)m->geom_kind[g]) {
-		case GEOM_BOX:
-			add_unit(dl, VIEW_MESH_BOX, &x, sz, rgba, 0.5);
-			break;
-		case GEOM_ELLIPSOID:
-			add_unit(dl, VIEW_MESH_SPHERE, &x, sz, rgba, 1);
-			break;
-		case GEOM_CYLINDER: {
-			double c[3] = { sz[0], sz[1], sz[0] };
-			add_unit(dl, VIEW_MESH_CYLINDER, &x, c, rgba, 1);
-			break;
-		}
-		case GEOM_CAPSULE: {
-			/* a tube and two hemispheres, the lower one turned over */
-			double c[3] = { sz[0], sz[1], sz[0] }, r[3] = { sz[0], sz[0], sz[0] };
-			struct xform cap = x;
-			add_unit(dl, VIEW_MESH_TUBE, &x, c, rgba, 1);
-			for (int i = 0; i < 3; i++)
-				cap.p[i] = x.p[i] + x.r[3 * i + 1] * sz[1] / 2;
-			add_unit(dl, VIEW_MESH_HEMISPHERE, &cap, r, rgba, 1);
-			for (int i = 0; i < 3; i++) {
-				cap.p[i] = x.p[i] - x.r[3 * i + 1] * sz[1] / 2;
-				cap.r[3 * i + 1] = -x.r[3 * i + 1];
-				cap.r[3 * i + 2] = -x.r[3 * i + 2];
+		struct view_part part[VIEW_GEOM_PARTS_MAX];
+		int n = view_geom_parts(m, g, part);
+		for (int k = 0; k < n; k++) {
+			struct xform x;
+			xform_mul(&s->seg_xf[seg], &part[k].xf, &x);
+			if (part[k].model_mesh >= 0) {
+				float mat[16];
+				view_mat_from_xform(&x, part[k].scale, mat);
+				view_add_instance(dl, mesh_base + part[k].model_mesh, mat, rgba, 1);
+			} else {
+				double ext = part[k].mesh == VIEW_MESH_BOX ? 0.5 : 1;
+				add_unit(dl, part[k].mesh, &x, part[k].scale, rgba, ext);
 			}
-			add_unit(dl, VIEW_MESH_HEMISPHERE, &cap, r, rgba, 1);
-			break;
-		}
-		case GEOM_MESH: {
-			float mat[16];
-			view_mat_from_xform(&x, sz, mat);
-			view_add_instance(dl, mesh_base + m->geom_mesh[g], mat, rgba, 1);
-			break;
-		}
 		}
 	}
 	return dl->ninst - before;

@@ -23,6 +23,7 @@
 
 #include <stdint.h>
 
+#include "pose/env.h"
 #include "pose/ik.h"
 #include "figure/mathx.h"
 #include "figure/model.h"
@@ -135,6 +136,12 @@ void view_camera_default(struct camera *dest);
  */
 int view_camera_aim(struct camera *c, const double eye[3], const double target[3]);
 
+/*
+ * The camera of a named view: the default one aimed from its eye at its
+ * target with its field of view (fovy_deg; 0 or less: the default 40 deg).
+ */
+void view_camera_of_view(const struct env_view *v, struct camera *dest);
+
 /* the view reference point: vrd along the line of sight */
 void view_camera_vrp(const struct camera *c, double dest[3]);
 
@@ -157,6 +164,31 @@ int view_project(const struct camera *c, int w, int h, const double p[3], double
  */
 void view_mouse_line(const struct camera *c, int w, int h, double px, double py, double origin[3],
 		     double dir[3]);
+
+/* ---- what a figure is drawn with ---------------------------------------- */
+
+/*
+ * How a geom is drawn: one to three unit meshes, each placed in the
+ * segment's frame by xf and scaled along its own axes by scale (a capsule
+ * is a tube and two hemispheres). Picking tests exactly these meshes.
+ */
+#define VIEW_GEOM_PARTS_MAX 3
+struct view_part {
+	int mesh;           /* enum view_mesh, or VIEW_MESH_BUILTIN for a model mesh */
+	int model_mesh;     /* the model's mesh index for a model mesh, else -1 */
+	struct xform xf;    /* part to segment */
+	double scale[3];
+};
+
+/* the parts of geom g of m; returns how many (1 .. VIEW_GEOM_PARTS_MAX) */
+int view_geom_parts(const struct model *m, int g, struct view_part dest[VIEW_GEOM_PARTS_MAX]);
+
+struct tess_mesh;
+/*
+ * Tessellates built-in mesh k as the renderer draws it: fine (1) for the
+ * pictures, coarse (0) for shadows. Returns 0, or -1 when out of memory.
+ */
+int view_mesh_tess(enum view_mesh k, int fine, struct tess_mesh *dest);
 
 /* ---- the draw list ------------------------------------------------------ */
 

@@ -21,6 +21,9 @@
 #define ENV_MAX_CONSTRAINTS 64
 #define ENV_PATH_MAX 256
 #define ENV_MAX_VIEWS 8
+#define ENV_VIEW_FOVY_DEG 40.0 /* a view's vertical field of view unless it asks for another */
+#define ENV_VIEW_FOVY_MIN 1.0  /* the fields of view a view may ask for, degrees */
+#define ENV_VIEW_FOVY_MAX 170.0
 
 enum env_err {
 	ENV_OK = 0,
@@ -79,6 +82,7 @@ struct env_view {
 	char name[MODEL_NAME_MAX];
 	int width, height;
 	double eye[3], target[3];
+	double fovy_deg; /* vertical field of view, degrees, kept as given so it reads back exactly */
 	int icons; /* 1: the manipulation icons, balance and goals */
 };
 
