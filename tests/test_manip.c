@@ -1008,6 +1008,161 @@ test_shift_uses_local_axes_after_a_rotation(void **unused)
 	assert_near(icon.axis[0], 1, 0);
 }
 
+/*
+ * ALT: a tenth of the motion, counted from the moment it changes, so
+ * neither pressing nor releasing it moves G; and it selects nothing, so
+ * holding it over a refused axis is not a repeat.
+ */
+static void
+test_alt_gives_a_tenth(void **unused)
+{
+	(void)unused;
+	struct xform g;
+	xform_identity(&g);
+	struct camera c = cam_at((double[3]){ 3, 3, 4 }, g.p);
+	const struct manip_def def = manip_default_def();
+	struct manip m;
+	manip_init(&m, &def, &g, &c);
+	struct ray r = ray_to(&c, (double[3]){ 0, 0, 0 });
+	manip_ray(&m, &r);
+	button(&m, BTN_LEFT, 1);
+	r = ray_to(&c, (double[3]){ 0.5, 0, 0 });
+	manip_ray(&m, &r);
+	assert_near(m.g.p[0], 0.5, 1e-9);
+	assert_int_equal(key(&m, KEY_LEFTALT, 1), 1);
+	assert_near(m.g.p[0], 0.5, 1e-9);
+	r = ray_to(&c, (double[3]){ 1.5, 0, 0 });
+	manip_ray(&m, &r);
+	assert_near(m.g.p[0], 0.6, 1e-9);
+	assert_int_equal(key(&m, KEY_LEFTALT, 0), 1);
+	assert_near(m.g.p[0], 0.6, 1e-9);
+	r = ray_to(&c, (double[3]){ 1.0, 0, 0 });
+	manip_ray(&m, &r);
+	assert_near(m.g.p[0], 0.1, 1e-9);
+	assert_near(m.g.p[1], 0, 1e-12);
+	assert_near(m.g.p[2], 0, 1e-12);
+	button(&m, BTN_LEFT, 0);
+
+	/* looking down z: z refused; ALT over it is no second choice, pressing z again is */
+	struct camera down_z = cam_at((double[3]){ 0.1, 0, 5 }, m.g.p);
+	manip_camera(&m, &down_z);
+	button(&m, BTN_RIGHT, 1);
+	assert_int_equal(m.state, MANIP_REFUSED);
+	key(&m, KEY_RIGHTALT, 1);
+	assert_int_equal(m.state, MANIP_REFUSED);
+	assert_int_equal(manip_refusal(&m)->repeat, 0);
+	key(&m, KEY_RIGHTALT, 0);
+	button(&m, BTN_RIGHT, 0);
+	button(&m, BTN_RIGHT, 1);
+	assert_int_equal(manip_refusal(&m)->repeat, 1);
+}
+
+/* increments: 1 cm along each axis, 5 degrees of turn, counted from the anchor */
+static void
+test_increments(void **unused)
+{
+	(void)unused;
+	struct xform g;
+	xform_identity(&g);
+	struct camera c = cam_at((double[3]){ 3, 3, 4 }, g.p);
+	const struct manip_def def = manip_default_def();
+	struct manip m;
+	manip_init(&m, &def, &g, &c);
+	manip_increments(&m, 1);
+	struct ray r = ray_to(&c, (double[3]){ 0, 0, 0 });
+	manip_ray(&m, &r);
+	button(&m, BTN_LEFT, 1);
+	r = ray_to(&c, (double[3]){ 0.123, 0, 0 });
+	manip_ray(&m, &r);
+	assert_near(m.g.p[0], 0.12, 1e-12);
+	r = ray_to(&c, (double[3]){ 0.126, 0, 0 });
+	manip_ray(&m, &r);
+	assert_near(m.g.p[0], 0.13, 1e-12);
+	/* the floor plane, steps along x and z from where the last line met it */
+	button(&m, BTN_RIGHT, 1);
+	r = ray_to(&c, (double[3]){ 0.126 + 0.123, 0, -0.456 });
+	manip_ray(&m, &r);
+	assert_near(m.g.p[0], 0.25, 1e-12);
+	assert_near(m.g.p[1], 0, 0);
+	assert_near(m.g.p[2], -0.46, 1e-12);
+	button(&m, BTN_LEFT, 0);
+	button(&m, BTN_RIGHT, 0);
+
+	/* the wheel about y, cranked 47 then 48 degrees: 45 then 50 */
+	const double o[3] = { m.g.p[0], 0, m.g.p[2] };
+	r = ray_to(&c, (double[3]){ o[0], 0, o[2] + 0.5 });
+	manip_ray(&m, &r);
+	key(&m, KEY_LEFTCTRL, 1);
+	button(&m, BTN_MIDDLE, 1);
+	for (int deg = 47; deg <= 48; deg++) {
+		for (int s = 1; s <= 10; s++) {
+			double th = deg * DEG * s / 10;
+			r = ray_to(&c, (double[3]){ o[0] + 0.5 * sin(th), 0, o[2] + 0.5 * cos(th) });
+			manip_ray(&m, &r);
+		}
+		double want[9];
+		mathx_rot_y((deg == 47 ? 45 : 50) * DEG, want);
+		for (int i = 0; i < 9; i++)
+			assert_near(m.g.r[i], want[i], 1e-12);
+		assert_near(m.g.p[0], o[0], 0);
+		assert_near(m.g.p[2], o[2], 0);
+		/* back to the first spoke for the next round */
+		r = ray_to(&c, (double[3]){ o[0], 0, o[2] + 0.5 });
+		for (int s = 9; s >= 0; s--) {
+			double th = deg * DEG * s / 10;
+			r = ray_to(&c, (double[3]){ o[0] + 0.5 * sin(th), 0, o[2] + 0.5 * cos(th) });
+			manip_ray(&m, &r);
+		}
+		assert_near(m.g.r[0], 1, 1e-12);
+	}
+	/* turning increments off mid-drag moves nothing; the rest is free */
+	struct xform before = m.g;
+	manip_increments(&m, 0);
+	assert_xform_same(&m.g, &before);
+	double th = 47 * DEG;
+	r = ray_to(&c, (double[3]){ o[0] + 0.5 * sin(th), 0, o[2] + 0.5 * cos(th) });
+	manip_ray(&m, &r);
+	double want[9];
+	mathx_rot_y(th, want);
+	for (int i = 0; i < 9; i++)
+		assert_near(m.g.r[i], want[i], 1e-9);
+}
+
+/* G set from outside mid-drag (a snap): kept, and the drag goes on from there */
+static void
+test_set_mid_drag(void **unused)
+{
+	(void)unused;
+	struct xform g;
+	xform_identity(&g);
+	struct camera c = cam_at((double[3]){ 3, 3, 4 }, g.p);
+	const struct manip_def def = manip_default_def();
+	struct manip m;
+	manip_init(&m, &def, &g, &c);
+	struct ray r = ray_to(&c, (double[3]){ 0, 0, 0 });
+	manip_ray(&m, &r);
+	key(&m, KEY_LEFTSHIFT, 1);
+	button(&m, BTN_LEFT, 1);
+	button(&m, BTN_RIGHT, 1); /* G's own xz plane */
+	r = ray_to(&c, (double[3]){ 0.2, 0, 0.1 });
+	manip_ray(&m, &r);
+	/* snapped: half a turn about x, moved up; G's xz plane is the floor again, at 0.5 */
+	struct xform snap;
+	xform_elementary(0, 0, 1, M_PI, &snap);
+	snap.p[1] = 0.5;
+	manip_set(&m, &snap);
+	assert_xform_same(&m.g, &snap);
+	r = ray_to(&c, (double[3]){ 0.1, 0.5, 0.1 });
+	assert_int_equal(manip_ray(&m, &r), 0);
+	r = ray_to(&c, (double[3]){ 0.4, 0.5, -0.3 });
+	manip_ray(&m, &r);
+	assert_near(m.g.p[0], 0.3, 1e-9);
+	assert_near(m.g.p[1], 0.5, 1e-9);
+	assert_near(m.g.p[2], -0.4, 1e-9);
+	for (int i = 0; i < 9; i++)
+		assert_near(m.g.r[i], snap.r[i], 0);
+}
+
 int
 main(void)
 {
@@ -1028,6 +1183,9 @@ main(void)
 		cmocka_unit_test(test_change_of_buttons_mid_drag),
 		cmocka_unit_test(test_camera_change_mid_drag),
 		cmocka_unit_test(test_shift_uses_local_axes_after_a_rotation),
+		cmocka_unit_test(test_alt_gives_a_tenth),
+		cmocka_unit_test(test_increments),
+		cmocka_unit_test(test_set_mid_drag),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -18,6 +18,7 @@ enum manip_input {
 	IN_CHORD,  /* buttons or modifiers changed */
 	IN_RAY,    /* a new mouse line */
 	IN_CAMERA, /* the view changed */
+	IN_SCALE,  /* ALT or increments changed how motion maps to G */
 };
 
 /* a wheel's spoke shorter than this (m) has no direction to anchor on */
@@ -26,7 +27,12 @@ enum manip_input {
 struct manip_def
 manip_default_def(void)
 {
-	struct manip_def d = { .limit = 20.0 * M_PI / 180.0 };
+	struct manip_def d = {
+		.limit = 20.0 * M_PI / 180.0,
+		.fine = 0.1,
+		.step = 0.01,
+		.step_angle = 5.0 * M_PI / 180.0,
+	};
 	return d;
 }
 
@@ -36,6 +42,9 @@ manip_init(struct manip *m, const struct manip_def *def, const struct xform *g,
 {
 	memset(m, 0, sizeof *m);
 	m->limit = def->limit;
+	m->fine = def->fine;
+	m->step = def->step;
+	m->step_angle = def->step_angle;
 	m->g = *g;
 	m->g0 = *g;
 	m->cam = *cam;
@@ -110,6 +119,22 @@ line_of_sight(const struct manip *m, double dest[3])
 	dest[2] = -m->cam.xf.r[8];
 }
 
+/* the selection's axis (or normal) and the two others, from G as it is now */
+static void
+selection_axes(struct manip *m)
+{
+	frame_axis(&m->g, m->sel.frame, m->sel.axis, m->axis);
+	/* the plane's axes in index order (xz: x then z); the wheel's with u x v = axis */
+	int i = (m->sel.axis + 1) % 3, j = (m->sel.axis + 2) % 3;
+	if (m->sel.mode == MANIP_MODE_PLANAR && i > j) {
+		int t = i;
+		i = j;
+		j = t;
+	}
+	frame_axis(&m->g, m->sel.frame, i, m->u);
+	frame_axis(&m->g, m->sel.frame, j, m->v);
+}
+
 static int
 same_selection(const struct manip_selection *a, const struct manip_selection *b)
 {
@@ -129,7 +154,7 @@ anchor_and_check(struct manip *m)
 	m->g0 = m->g;
 	m->anchored = 0;
 	m->angle = 0;
-	frame_axis(&m->g, m->sel.frame, m->sel.axis, m->axis);
+	selection_axes(m);
 	double sight[3];
 	line_of_sight(m, sight);
 	double angle = geom_line_angle(m->axis, sight);
@@ -164,6 +189,17 @@ anchor_and_check(struct manip *m)
 
 /* ---- following the mouse line ---------------------------------------------- */
 
+/* a motion since the anchor as G takes it: a tenth under ALT, in steps when asked */
+static double
+applied(const struct manip *m, double motion, double step)
+{
+	if (m->alt)
+		motion *= m->fine;
+	if (m->increments && step > 0)
+		motion = step * round(motion / step);
+	return motion;
+}
+
 /* B.1: G's origin moves with the nearest point of the axis */
 static void
 linear_follow(struct manip *m)
@@ -176,8 +212,9 @@ linear_follow(struct manip *m)
 		m->anchored = 1;
 		return;
 	}
+	double d = applied(m, s - m->s0, m->step);
 	for (int i = 0; i < 3; i++)
-		m->g.p[i] = m->g0.p[i] + (s - m->s0) * m->axis[i];
+		m->g.p[i] = m->g0.p[i] + d * m->axis[i];
 }
 
 /* B.2: G's origin moves with the point where the mouse line meets the plane */
@@ -192,8 +229,14 @@ planar_follow(struct manip *m)
 		m->anchored = 1;
 		return;
 	}
+	/* the motion in the plane's own axes, so increments step along them */
+	double w[3];
 	for (int i = 0; i < 3; i++)
-		m->g.p[i] = m->g0.p[i] + x[i] - m->x0[i];
+		w[i] = x[i] - m->x0[i];
+	double du = applied(m, mathx_dot(w, m->u), m->step);
+	double dv = applied(m, mathx_dot(w, m->v), m->step);
+	for (int i = 0; i < 3; i++)
+		m->g.p[i] = m->g0.p[i] + du * m->u[i] + dv * m->v[i];
 }
 
 /*
@@ -225,7 +268,7 @@ rotate_follow(struct manip *m)
 	m->angle += turn;
 	memcpy(m->spoke, s, sizeof s);
 	double r[9];
-	geom_rotation(m->axis, m->angle, r);
+	geom_rotation(m->axis, applied(m, m->angle, m->step_angle), r);
 	mathx_mat3_mul(r, m->g0.r, m->g.r);
 	memcpy(m->g.p, m->g0.p, sizeof m->g.p);
 }
@@ -300,6 +343,16 @@ choose(struct manip *m)
 	return state_of_mode(m->sel.mode);
 }
 
+/* ALT or increments changed: the motion so far is G's, the rest counts from here */
+static void
+reanchor(struct manip *m)
+{
+	m->g0 = m->g;
+	m->anchored = 0;
+	m->angle = 0;
+	follow(m);
+}
+
 /*
  * The camera changed under the same chord: check again, and wait for the
  * next mouse line (from the new view) to anchor on.
@@ -331,6 +384,7 @@ idle_handle(struct manip *m, enum manip_input in)
 		return choose(m);
 	case IN_RAY:
 	case IN_CAMERA:
+	case IN_SCALE:
 		break;
 	}
 	return MANIP_IDLE;
@@ -345,6 +399,7 @@ none_handle(struct manip *m, enum manip_input in)
 		return choose(m);
 	case IN_RAY:
 	case IN_CAMERA:
+	case IN_SCALE:
 		break;
 	}
 	return MANIP_NONE;
@@ -358,6 +413,7 @@ refused_handle(struct manip *m, enum manip_input in)
 	case IN_CHORD:
 		return choose(m);
 	case IN_RAY:
+	case IN_SCALE:
 		break;
 	case IN_CAMERA:
 		return recheck(m, MANIP_REFUSED);
@@ -377,6 +433,9 @@ acting_handle(struct manip *m, enum manip_input in, enum manip_state self)
 		return self;
 	case IN_CAMERA:
 		return recheck(m, self);
+	case IN_SCALE:
+		reanchor(m);
+		return self;
 	}
 	return self;
 }
@@ -473,12 +532,28 @@ manip_event(struct manip *m, const struct input_event_rec *ev)
 		case KEY_RIGHTCTRL:
 			changed = set_bit(&m->ctrl, 2, down);
 			break;
+		case KEY_LEFTALT:
+		case KEY_RIGHTALT:
+			/* ALT selects nothing (a refused axis is not chosen again by it): it re-anchors */
+			if (!set_bit(&m->alt, ev->code == KEY_LEFTALT ? 1 : 2, down))
+				return 0;
+			dispatch(m, IN_SCALE);
+			return 1;
 		}
 	}
 	if (!changed)
 		return 0;
 	dispatch(m, IN_CHORD);
 	return 1;
+}
+
+void
+manip_increments(struct manip *m, int on)
+{
+	if (m->increments == !!on)
+		return;
+	m->increments = !!on;
+	dispatch(m, IN_SCALE);
 }
 
 int
@@ -506,7 +581,7 @@ manip_set(struct manip *m, const struct xform *g)
 	m->anchored = 0;
 	m->angle = 0;
 	if (m->state == MANIP_LINEAR || m->state == MANIP_PLANAR || m->state == MANIP_ROTATE)
-		frame_axis(&m->g, m->sel.frame, m->sel.axis, m->axis);
+		selection_axes(m);
 }
 
 /* ---- what the caller reads ----------------------------------------------------- */
@@ -523,15 +598,8 @@ manip_icon(const struct manip *m, struct manip_icon *dest)
 	memcpy(dest->axis, m->axis, sizeof dest->axis);
 	if (m->state == MANIP_REFUSED)
 		memcpy(dest->axis, m->refusal.axis, sizeof dest->axis);
-	/* the plane's two axes in index order, turned with G when local */
-	int i = (m->sel.axis + 1) % 3, j = (m->sel.axis + 2) % 3;
-	if (m->sel.mode == MANIP_MODE_PLANAR && i > j) {
-		int t = i;
-		i = j;
-		j = t;
-	}
-	frame_axis(&m->g0, m->sel.frame, i, dest->u);
-	frame_axis(&m->g0, m->sel.frame, j, dest->v);
+	memcpy(dest->u, m->u, sizeof dest->u);
+	memcpy(dest->v, m->v, sizeof dest->v);
 	if (m->sel.mode == MANIP_MODE_ROTATE && m->anchored) {
 		dest->has_spokes = 1;
 		memcpy(dest->spoke0, m->spoke0, sizeof dest->spoke0);

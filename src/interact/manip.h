@@ -79,8 +79,17 @@ enum manip_state {
 	MANIP_ROTATE,
 };
 
+/*
+ * ALT and increments are not in the dissertation; they follow what users
+ * of current tools expect (Blender: a tenth of the motion, steps while
+ * snapping). Both act on the motion since the anchor, so G keeps its
+ * place when they turn on or off.
+ */
 struct manip_def {
-	double limit; /* the degenerate-axis threshold, radians (section 3.7: 20 degrees) */
+	double limit;      /* the degenerate-axis threshold, radians (section 3.7: 20 degrees) */
+	double fine;       /* the fraction of the motion while ALT is held (0.1) */
+	double step;       /* increments: metres of translation along each axis (0.01) */
+	double step_angle; /* increments: radians of rotation (5 degrees) */
 };
 
 /* why the current chord does nothing, for the message line and the view adjustment */
@@ -103,7 +112,7 @@ struct manip_icon {
 	int has_spokes;     /* ROTATE, once a mouse line has met the wheel's plane */
 	double spoke0[3];   /* the first spoke (from the origin to the first point), world */
 	double spoke[3];    /* the current spoke */
-	double angle;       /* ROTATE: turned since the anchor, rad (may pass +-pi) */
+	double angle;       /* ROTATE: the spokes' turn since the anchor, rad (may pass +-pi) */
 };
 
 struct manip {
@@ -112,6 +121,9 @@ struct manip {
 	unsigned buttons;  /* MANIP_LEFT | MANIP_MIDDLE | MANIP_RIGHT */
 	unsigned shift;    /* bit 0 the left key, bit 1 the right one */
 	unsigned ctrl;
+	unsigned alt;
+	int increments;    /* manip_increments() */
+	double fine, step, step_angle;
 	struct ray ray;
 	int have_ray;
 	struct camera cam;
@@ -123,17 +135,18 @@ struct manip {
 	int anchored;      /* 0 until a mouse line meets the axis, plane or wheel */
 	struct xform g0;
 	double axis[3];    /* world, unit: the axis, or the plane's normal */
+	double u[3], v[3]; /* the plane's axes (index order), or the wheel's (u x v = axis) */
 	double s0;         /* LINEAR: axis parameter of the nearest point */
 	double x0[3];      /* PLANAR: the point in the plane */
 	double spoke0[3], spoke[3]; /* ROTATE: first and latest spoke */
-	double angle;      /* ROTATE: summed turn since the anchor */
+	double angle;      /* ROTATE: summed turn of the spokes since the anchor */
 	/* the 20 degree rule */
 	struct manip_refusal refusal;
 	int have_last_refused;
 	struct manip_selection last_refused;
 };
 
-/* 20 degrees */
+/* 20 degrees; ALT a tenth; increments of 1 cm and 5 degrees */
 struct manip_def manip_default_def(void);
 
 /* an idle operator on G seen through cam, no button or key down */
@@ -148,10 +161,10 @@ struct manip_selection manip_chord(unsigned buttons, int shift, int ctrl);
 
 /*
  * A button (BTN_LEFT, BTN_MIDDLE, BTN_RIGHT) or key (KEY_LEFTSHIFT,
- * KEY_RIGHTSHIFT, KEY_LEFTCTRL, KEY_RIGHTCTRL) record. Returns 1 when the
- * chord changed (the selection was re-made and re-anchored; G did not
- * move), 0 for anything else: other codes and kinds, key repeats, a press
- * of what is already down.
+ * KEY_RIGHTSHIFT, KEY_LEFTCTRL, KEY_RIGHTCTRL, KEY_LEFTALT, KEY_RIGHTALT)
+ * record. Returns 1 when the chord changed (the selection was re-made, or
+ * for ALT the motion re-anchored; G did not move), 0 for anything else:
+ * other codes and kinds, key repeats, a press of what is already down.
  */
 int manip_event(struct manip *m, const struct input_event_rec *ev);
 
@@ -168,6 +181,9 @@ int manip_ray(struct manip *m, const struct ray *r);
  * re-anchors, so the view change itself does not move G.
  */
 void manip_camera(struct manip *m, const struct camera *cam);
+
+/* motion in steps of def.step and def.step_angle since the anchor (on 1) or free (0); re-anchors */
+void manip_increments(struct manip *m, int on);
 
 /* G set from outside (snapping, a command): kept, and the next mouse line re-anchors */
 void manip_set(struct manip *m, const struct xform *g);
