@@ -12,6 +12,7 @@
 #include "devices/input_devs.h"
 #include "devices/queue.h"
 #include "draw/frame.h"
+#include "interact/interact.h"
 #include "interact/pick.h"
 #include "pose/env.h"
 
@@ -83,6 +84,8 @@ struct daemon {
 	const struct input_devs *devices;
 	/* the kiosk grab (grab -1: unchanged) and the pointer gain (0: unchanged); NULL: none */
 	int (*set_input)(struct daemon *d, int grab, double gain);
+	/* the interactive mode the input drives (manipulate ...); NULL: none taken */
+	struct interact *interact;
 	double pointer_gain;
 	struct pick_cache picks;
 };

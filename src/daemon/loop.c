@@ -15,12 +15,14 @@
 #include "daemon/events.h"
 #include "daemon/notify.h"
 #include "daemon/scene.h"
-#include "devices/input_backends.h"
 #include "devices/can_dev.h"
 #include "devices/escape_chord.h"
 #include "devices/hotplug.h"
+#include "devices/input_backends.h"
 #include "devices/input_devs.h"
 #include "devices/motion_scale.h"
+#include "figure/kin.h"
+#include "interact/interact.h"
 #include "pose/attach.h"
 
 struct loop {
@@ -42,6 +44,7 @@ struct loop {
 	double pointer_gain;
 	struct hotplug hotplug;   /* devices arriving; fd -1: not watched */
 	struct escape_chord escape; /* the grab's way out at the keyboard */
+	struct interact interact;   /* the mode the input drives */
 	struct scene scene;   /* the views' pictures */
 	int stop;
 };
@@ -69,6 +72,31 @@ virtual_now(void *ctx)
 	return L->virtual_us += 20;
 }
 
+/* an input event to the interactive mode; its target applied at once */
+static void
+drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
+{
+	struct interact *ia = &L->interact;
+	if (ia->mode == INTERACT_NONE)
+		return;
+	struct env *env = &L->d.env;
+	const struct env_view *vw = ia->view >= 0 ? &env->view[ia->view] : NULL;
+	struct env_figure *f = ia->fig >= 0 ? &env->fig[ia->fig] : NULL;
+	if (!vw || !vw->used || !f || f->gen != ia->tag) { /* its view or figure went away */
+		interact_end(ia);
+		return;
+	}
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	int r = interact_input(ia, e, px, py, &cam, vw->width, vw->height);
+	if ((r & INTERACT_MOVED) && ia->mode == INTERACT_FIGURE) {
+		interact_target(ia, &f->state->root_xf);
+		kin_update(f->model, f->state);
+	}
+	if (r)
+		L->scene.dirty = 1;
+}
+
 /* the input queued since the last frame, taken in order */
 static void
 take_input(struct loop *L)
@@ -88,6 +116,7 @@ take_input(struct loop *L)
 					"('set input grab=yes' takes it again)\n");
 		}
 		events_input(&L->events, &e, px, py);
+		drive_mode(L, &e, px, py);
 	}
 }
 
@@ -222,6 +251,8 @@ request(struct loop *L, int i, const char *line, size_t len)
 		}
 		return;
 	}
+	/* a command sees every input that came before it (a mode moved by them, say) */
+	take_input(L);
 	/* what the solver did since the last reply is made durable first */
 	if (journal_postures(&L->j, &L->d) < 0)
 		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
@@ -434,6 +465,8 @@ loop_run(const struct loop_config *cfg)
 	L->d.subscribe = subscribe;
 	L->d.render_view = render_view;
 	L->d.set_input = set_input;
+	interact_init(&L->interact);
+	L->d.interact = &L->interact;
 	L->hotplug.fd = -1;
 	input_queue_init(&L->input);
 	L->d.input = &L->input;

@@ -1,0 +1,111 @@
+/*
+ * cmd_manip.c - the interactive modes over the socket: `manipulate figure`
+ * starts the mode the kiosk starts, the input lines (and the devices) drive
+ * it through the loop, ESC ends it, `get manip` says where G is.
+ */
+#include <string.h>
+
+#include "daemon/cmd_ctx.h"
+#include "daemon/daemon.h"
+#include "interact/interact.h"
+
+/* the view a mode works through: view=NAME, else the first there is; -1 with the error set */
+static int
+manip_view(struct cmd_ctx *c)
+{
+	const struct env *e = &c->d->env;
+	const char *name = cmd_key(c, "view");
+	if (name) {
+		int v = env_find_view(e, name);
+		if (v < 0)
+			return cmd_fail(c, "not-found", "no view '%.60s'", name);
+		return v;
+	}
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		if (e->view[v].used)
+			return v;
+	return cmd_fail(c, "not-found", "no view to manipulate in: add view first");
+}
+
+int
+cmd_manipulate_figure(struct cmd_ctx *c)
+{
+	if (!c->d->interact)
+		return cmd_fail(c, "bad-argument", "this daemon takes no input");
+	for (int i = 1; i < c->argc; i++)
+		if (!words_is_key(c->argv[i], "view"))
+			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
+	int fig = cmd_figure(c, c->argv[0]);
+	if (fig < 0)
+		return -1;
+	int v = manip_view(c);
+	if (v < 0)
+		return -1;
+	const struct env_view *vw = &c->d->env.view[v];
+	const struct env_figure *f = &c->d->env.fig[fig];
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	/* G on the figure's root site, the frame its location is given in */
+	const struct xform *root = &f->state->root_xf;
+	interact_start(c->d->interact, INTERACT_FIGURE, fig, v, root, root, &cam, vw->width,
+		       vw->height);
+	c->d->interact->tag = f->gen;
+	json_object_set_new(c->result, "mode", json_string("figure"));
+	json_object_set_new(c->result, "view", json_string(vw->name));
+	return 0;
+}
+
+/* the active axis or plane: "x", "y", "z", "xy", "yz", "xz", or NULL */
+static const char *
+manip_axis_name(const struct manip_icon *ic)
+{
+	static const char *const axes[] = { "x", "y", "z" };
+	static const char *const planes[] = { "yz", "xz", "xy" }; /* by the normal's index */
+	int a = ic->sel.axis;
+	if (a < 0 || a > 2)
+		return NULL;
+	switch (ic->state) {
+	case MANIP_LINEAR:
+	case MANIP_ROTATE:
+		return axes[a];
+	case MANIP_PLANAR:
+		return planes[a];
+	case MANIP_REFUSED:
+		return ic->sel.mode == MANIP_MODE_PLANAR ? planes[a] : axes[a];
+	default:
+		return NULL;
+	}
+}
+
+int
+cmd_get_manip(struct cmd_ctx *c)
+{
+	const struct interact *ia = c->d->interact;
+	int on = ia && ia->mode != INTERACT_NONE;
+	json_object_set_new(c->result, "mode",
+			    json_string(interact_mode_to_str(on ? ia->mode : INTERACT_NONE)));
+	if (!on) {
+		json_object_set_new(c->result, "view", json_null());
+		json_object_set_new(c->result, "position", json_null());
+		json_object_set_new(c->result, "rotation", json_null());
+		json_object_set_new(c->result, "axis", json_null());
+		json_object_set_new(c->result, "state", json_string("idle"));
+		json_object_set_new(c->result, "message", json_string(""));
+		return 0;
+	}
+	struct manip_icon ic;
+	manip_icon(&ia->m, &ic);
+	json_object_set_new(c->result, "view", json_string(c->d->env.view[ia->view].name));
+	json_object_set_new(c->result, "position", cmd_vec(ia->m.g.p, 3));
+	json_t *rot = json_array();
+	for (int i = 0; i < 3; i++)
+		json_array_append_new(rot, cmd_vec(&ia->m.g.r[3 * i], 3));
+	json_object_set_new(c->result, "rotation", rot);
+	const char *axis = manip_axis_name(&ic);
+	json_object_set_new(c->result, "axis", axis ? json_string(axis) : json_null());
+	json_object_set_new(c->result, "state", json_string(manip_state_to_str(ic.state)));
+	json_object_set_new(c->result, "frame",
+			    json_string(ic.sel.frame == MANIP_LOCAL ? "local" : "global"));
+	json_object_set_new(c->result, "message", json_string(ia->message));
+	return 0;
+}

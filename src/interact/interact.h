@@ -1,0 +1,78 @@
+/*
+ * interact.h - the interactive modes around the manipulation operator:
+ * which object G moves, through which view, and the pointer that makes the
+ * mouse line. The daemon (or the kiosk) starts a mode, feeds it every
+ * input event with the view's camera, and applies the target it reads
+ * back; nothing here reads a clock, a device or the environment.
+ *
+ * A mode holds the object's frame in G's frame, fixed when the mode
+ * starts, so the object follows G rigidly: moving a figure moves its root
+ * site's frame (the figure's location) as G moves.
+ *
+ * The pointer: absolute positions (INPUT_POINTER, in the view's pixels or
+ * 0..1 of the view) set it; relative motion moves it by the pixels the
+ * caller computed from the counts (devices/motion_scale.h); it stays
+ * inside the view. Every pointer change gives the operator a new mouse
+ * line. ESC (pressed) ends the mode; G stays where it is.
+ */
+#ifndef POSTURE_INTERACT_INTERACT_H
+#define POSTURE_INTERACT_INTERACT_H
+
+#include "devices/event.h"
+#include "draw/view.h"
+#include "figure/mathx.h"
+#include "interact/manip.h"
+
+enum interact_mode {
+	INTERACT_NONE,
+	INTERACT_FIGURE, /* manipulate figure: the figure's location follows G */
+};
+
+/* what interact_input did */
+#define INTERACT_MOVED 0x1 /* G moved: apply interact_target() */
+#define INTERACT_ENDED 0x2 /* the mode ended (ESC) */
+#define INTERACT_ICONS 0x4 /* the chord changed: the icons change, G did not move */
+
+#define INTERACT_MESSAGE_MAX 128
+
+struct interact {
+	enum interact_mode mode;
+	int fig;              /* the object: a figure slot */
+	unsigned long tag;    /* the caller's: e.g. the slot's generation, to tell a reused slot */
+	int view;             /* the view the pointer is in */
+	double px, py;        /* the pointer, the view's pixels (origin top left) */
+	struct camera cam;    /* the camera the operator last saw */
+	int width, height;
+	struct manip m;
+	struct xform offset;  /* the object in G's frame */
+	char message[INTERACT_MESSAGE_MAX];
+};
+
+void interact_init(struct interact *ia);
+
+/*
+ * Starts mode on figure fig through view (its camera cam, its size w x h):
+ * G starts at g0, the object is at obj (both world). The pointer starts at
+ * the view's centre. A mode already running is ended first.
+ */
+void interact_start(struct interact *ia, enum interact_mode mode, int fig, int view,
+		    const struct xform *g0, const struct xform *obj, const struct camera *cam,
+		    int w, int h);
+
+/*
+ * One input event, with the view's camera and size now (they may have
+ * changed since the last event) and, for INPUT_MOTION, the motion in
+ * pixels. Returns INTERACT_* bits; 0 when nothing happened (no mode, an
+ * event of no meaning here).
+ */
+int interact_input(struct interact *ia, const struct input_event_rec *e, long px, long py,
+		   const struct camera *cam, int w, int h);
+
+/* where the object goes: G times the offset */
+void interact_target(const struct interact *ia, struct xform *dest);
+
+void interact_end(struct interact *ia);
+
+const char *interact_mode_to_str(enum interact_mode m);
+
+#endif

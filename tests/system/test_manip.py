@@ -1,0 +1,146 @@
+"""The manipulation operator through the daemon (issue 13): `manipulate figure` starts the
+mode, `input` lines drive it as a mouse does, ESC ends it, `get manip` says where G is.
+The expected positions are Appendix B's geometry computed here in Python from the mouse
+lines the daemon's `pick` gives (the mouse line itself is checked against PyGLM in
+test_pick.py)."""
+import math
+
+import pytest
+
+from daemon import daemon, daemon_factory, snapshot  # noqa: F401 (fixtures)
+
+
+def sub(a, b):
+    return [x - y for x, y in zip(a, b)]
+
+
+def dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def nearest_on_axis(p0, u, o, d):
+    """the parameter s of the point p0 + s u of the axis nearest the line o + t d"""
+    w = sub(p0, o)
+    a, b, c = dot(u, u), dot(u, d), dot(d, d)
+    dd, e = dot(u, w), dot(d, w)
+    den = a * c - b * b
+    return (b * e - c * dd) / den
+
+
+def ray(c, view, x, y):
+    r = c.request(f"pick {view} {x} {y}")
+    return r["origin"], r["direction"]
+
+
+def setup(c, eye="0,1,3", target="0,1,0"):
+    c.request("load human as human")
+    c.request(f"add view front width=320 height=240 eye={eye} target={target}")
+
+
+def test_a_drag_along_x_follows_the_nearest_point_and_moves_the_figure(daemon):
+    with daemon.client() as c:
+        setup(c)
+        assert c.request("get manip")["mode"] == "none"
+        assert c.request("manipulate figure human view=front") == {"mode": "figure",
+                                                                   "view": "front"}
+        g0 = c.request("get manip")
+        assert g0["mode"] == "figure" and g0["view"] == "front" and g0["state"] == "idle"
+        p0 = g0["position"]
+        # press at one pixel, drag to another: G follows the change of the nearest point
+        c.request("input pointer front 100 150")
+        c.request("input button left down")
+        pressed = c.request("get manip")
+        assert pressed["position"] == pytest.approx(p0, abs=1e-12)  # a press never moves G
+        assert pressed["axis"] == "x" and pressed["state"] == "linear"
+        c.request("input pointer front 220 90")
+        moved = c.request("get manip")
+        o1, d1 = ray(c, "front", 100, 150)
+        o2, d2 = ray(c, "front", 220, 90)
+        x = [1, 0, 0]
+        want = nearest_on_axis(p0, x, o2, d2) - nearest_on_axis(p0, x, o1, d1)
+        assert moved["position"][0] == pytest.approx(p0[0] + want, abs=1e-9)
+        assert moved["position"][1:] == pytest.approx(p0[1:], abs=1e-12)
+        assert abs(want) > 0.1
+        # the figure's root went with G
+        root = c.request("show figure human")["root"]
+        site = c.request(f"get site human {root}")
+        assert site["position"] == pytest.approx(moved["position"], abs=1e-9)
+        c.request("input button left up")
+        c.request("input key KEY_ESC down")
+        c.request("input key KEY_ESC up")
+        assert c.request("get manip")["mode"] == "none"
+        # the figure stays where the drag left it
+        site = c.request(f"get site human {root}")
+        assert site["position"] == pytest.approx(moved["position"], abs=1e-9)
+
+
+def test_two_buttons_move_in_their_plane_and_three_do_nothing(daemon):
+    with daemon.client() as c:
+        setup(c)
+        c.request("manipulate figure human")
+        p0 = c.request("get manip")["position"]
+        c.request("input pointer front 160 120")
+        c.request("input button left down")
+        c.request("input button middle down")  # x and y: the xy plane, normal z
+        g = c.request("get manip")
+        assert g["state"] == "planar" and g["axis"] == "xy"
+        c.request("input pointer front 200 100")
+        o1, d1 = ray(c, "front", 160, 120)
+        o2, d2 = ray(c, "front", 200, 100)
+
+        def hit(o, d):  # the mouse line through the plane z = p0.z
+            t = (p0[2] - o[2]) / d[2]
+            return [o[i] + t * d[i] for i in range(3)]
+        want = sub(hit(o2, d2), hit(o1, d1))
+        got = sub(c.request("get manip")["position"], p0)
+        assert got == pytest.approx(want, abs=1e-9)
+        c.request("input button right down")  # three buttons: nothing
+        g3 = c.request("get manip")
+        c.request("input pointer front 10 10")
+        assert c.request("get manip")["position"] == g3["position"]
+        assert c.request("get manip")["state"] == "none"
+
+
+def test_control_rotates_about_the_axis_keeping_the_origin(daemon):
+    with daemon.client() as c:
+        setup(c, eye="0,4,0.5", target="0,0,0")  # from above: the wheel about y faces us
+        c.request("manipulate figure human")
+        g0 = c.request("get manip")
+        c.request("input key KEY_LEFTCTRL down")
+        c.request("input pointer front 220 120")
+        c.request("input button middle down")
+        assert c.request("get manip")["state"] == "rotate"
+        c.request("input pointer front 160 40")
+        g = c.request("get manip")
+        assert g["position"] == pytest.approx(g0["position"], abs=1e-12)
+        # the turn is about y: y's row and column unchanged, the rotation orthonormal
+        r = g["rotation"]
+        r0 = g0["rotation"]
+        for i in range(3):
+            assert dot(r[i], r[i]) == pytest.approx(1, abs=1e-12)
+        cos_turn = dot([r[0][0], r[1][0], r[2][0]], [r0[0][0], r0[1][0], r0[2][0]])
+        assert cos_turn < math.cos(math.radians(10))  # it turned visibly
+
+
+def test_the_20_degree_rule_refuses_an_axis_along_the_line_of_sight(daemon):
+    with daemon.client() as c:
+        setup(c, eye="0.05,6,0.05", target="0,0,0")  # straight down: y is the line of sight
+        c.request("manipulate figure human")
+        p0 = c.request("get manip")["position"]
+        c.request("input button middle down")
+        g = c.request("get manip")
+        assert g["state"] == "refused"
+        assert g["message"] == "can't translate along that axis from this view"
+        c.request("input pointer front 10 10")
+        assert c.request("get manip")["position"] == pytest.approx(p0, abs=1e-12)
+
+
+def test_bad_lines_are_refused_and_change_nothing(daemon):
+    with daemon.client() as c:
+        c.request("load human as human")
+        assert c.request_reply("manipulate figure human")["error"]["code"] == "not-found"  # no view yet
+        c.request("add view front width=320 height=240 eye=0,1,3 target=0,1,0")
+        assert c.request_reply("manipulate figure nobody")["error"]["code"] == "not-found"
+        assert c.request_reply("manipulate figure human view=back")["error"]["code"] == "not-found"
+        assert c.request_reply("manipulate figure human speed=3")["error"]["code"] == "bad-argument"
+        assert c.request("get manip")["mode"] == "none"
