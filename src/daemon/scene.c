@@ -40,6 +40,40 @@ scene_ready(struct scene *sc, char *err, size_t errlen)
 	return 0;
 }
 
+/*
+ * The manipulation icons of §3.6 in the mode's view: G as a labelled
+ * frame, and what the chord chose (the arrow of an axis, the arrows of a
+ * plane, the wheel with its spoke), drawn as soon as the chord changes;
+ * the pointer on top.
+ */
+static void
+scene_add_manip(struct drawlist *dl, const struct interact *ia)
+{
+	struct manip_icon ic;
+	manip_icon(&ia->m, &ic);
+	view_add_frame_icon(dl, &ia->m.g, 0.25, 1);
+	switch (ic.state) {
+	case MANIP_LINEAR:
+		view_add_translation_arrow(dl, ic.origin, ic.axis, 0.6);
+		break;
+	case MANIP_PLANAR:
+		view_add_translation_arrow(dl, ic.origin, ic.u, 0.6);
+		view_add_translation_arrow(dl, ic.origin, ic.v, 0.6);
+		break;
+	case MANIP_ROTATE: {
+		struct view_wheel w = { .radius = 0.3 };
+		memcpy(w.center, ic.origin, sizeof w.center);
+		memcpy(w.axis, ic.axis, sizeof w.axis);
+		memcpy(w.spoke, ic.has_spokes ? ic.spoke : ic.u, sizeof w.spoke);
+		view_add_rotation_wheel(dl, &w);
+		break;
+	}
+	default:
+		break;
+	}
+	view_add_pointer(dl, ia->px, ia->py);
+}
+
 int
 scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
 	   size_t errlen)
@@ -70,11 +104,16 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 		env_sync_solver(e, i);
 		view_add_goals(sc->dl, f->ik, f->model, f->state);
 	}
+	const struct interact *ia = d->interact;
+	int manipulating = ia && ia->mode != INTERACT_NONE && ia->view == v;
+	if (manipulating)
+		scene_add_manip(sc->dl, ia);
 	char status[200];
 	snprintf(status, sizeof status, "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
 		 vw->name, (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
 		 d->stats.draw_us / 1000);
-	view_add_status(sc->dl, status, d->message, 0);
+	/* the operator's refusal, while there is one, over the daemon's message */
+	view_add_status(sc->dl, status, manipulating && ia->message[0] ? ia->message : d->message, 0);
 	if (render_frame(sc->r, sc->dl, d->stats.frame, &sc->frame) < 0) {
 		snprintf(err, errlen, "render_frame failed");
 		return -1;

@@ -144,3 +144,74 @@ def test_bad_lines_are_refused_and_change_nothing(daemon):
         assert c.request_reply("manipulate figure human view=back")["error"]["code"] == "not-found"
         assert c.request_reply("manipulate figure human speed=3")["error"]["code"] == "bad-argument"
         assert c.request("get manip")["mode"] == "none"
+
+
+def png_pixels(data):
+    """(width, height, rows of (r, g, b)) of an 8-bit RGB or RGBA, non-interlaced PNG"""
+    import struct
+    import zlib
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    pos, idat, w = 8, b"", 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, color, _, _, interlace = struct.unpack(">IIBBBBB", body)
+            assert depth == 8 and color in (2, 6) and interlace == 0
+            bpp = 3 if color == 2 else 4
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw = zlib.decompress(idat)
+    stride = w * bpp
+    rows, prev = [], bytearray(stride)
+    for y in range(h):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0
+            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
+            if f == 1:
+                line[i] = (line[i] + a) & 255
+            elif f == 2:
+                line[i] = (line[i] + b) & 255
+            elif f == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append([tuple(line[x * bpp:x * bpp + 3]) for x in range(w)])
+        prev = line
+    return w, h, rows
+
+
+def test_the_icons_show_as_soon_as_the_chord_changes(daemon):
+    """§3.6: G's frame, the arrow of the chosen axis and the pointer are drawn in the mode's
+    view as soon as a button goes down, before any motion; ESC takes them away. The
+    pictures go to the test output."""
+    import base64
+    import os
+    out = os.path.join(os.environ.get("POSTURE_BUILD", "build/rel"), "test-output")
+    os.makedirs(out, exist_ok=True)
+    with daemon.client() as c:
+        c.request("load human as human")
+        c.request("add view front width=320 height=240 eye=0.8,1.2,2.5 target=0,0.7,0")
+        c.request("manipulate figure human")
+        c.request("input button left down")
+        with_icons = base64.b64decode(c.request("render view front")["png"])
+        c.request("input button left up")
+        c.request("input key KEY_ESC down")
+        plain = base64.b64decode(c.request("render view front")["png"])
+    for name, data in (("manip_icons.png", with_icons), ("manip_plain.png", plain)):
+        with open(os.path.join(out, name), "wb") as f:
+            f.write(data)
+    w, h, a = png_pixels(with_icons)
+    _, _, b = png_pixels(plain)
+    changed = [a[y][x] for y in range(h) for x in range(w) if a[y][x] != b[y][x]]
+    assert len(changed) > 200, len(changed)
+
+    def strong(px, i):  # one channel well above the other two
+        return px[i] > 150 and all(px[i] > px[j] + 60 for j in range(3) if j != i)
+    assert any(strong(p, 0) for p in changed), "no red x axis"
+    assert any(strong(p, 1) for p in changed), "no green y axis"
+    assert any(strong(p, 2) for p in changed), "no blue z axis"
