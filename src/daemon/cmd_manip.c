@@ -47,11 +47,71 @@ cmd_manipulate_figure(struct cmd_ctx *c)
 	view_camera_of_view(vw, &cam);
 	/* G on the figure's root site, the frame its location is given in */
 	const struct xform *root = &f->state->root_xf;
+	if (c->client < 0) /* replaying the journal: no mode nobody drives */
+		return 0;
 	interact_start(c->d->interact, INTERACT_FIGURE, fig, v, root, root, &cam, vw->width,
 		       vw->height);
 	c->d->interact->tag = f->gen;
 	json_object_set_new(c->result, "mode", json_string("figure"));
 	json_object_set_new(c->result, "view", json_string(vw->name));
+	return 0;
+}
+
+/*
+ * drag FIG SEG.SITE [start=JOINT] [view=VIEW] (§4.6.1): the site is held to
+ * G by a constraint named "drag" (position and orientation, the chain from
+ * the site up to JOINT, or to the root), which the solver satisfies each
+ * frame within its time limit; G starts on the site. ESC ends the drag and
+ * deletes the constraint; the posture stays.
+ */
+int
+cmd_drag(struct cmd_ctx *c)
+{
+	if (!c->d->interact)
+		return cmd_fail(c, "bad-argument", "this daemon takes no input");
+	for (int i = 2; i < c->argc; i++)
+		if (!words_is_key(c->argv[i], "view") && !words_is_key(c->argv[i], "start"))
+			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
+	int fig = cmd_figure(c, c->argv[0]);
+	if (fig < 0)
+		return -1;
+	struct env *e = &c->d->env;
+	struct env_figure *f = &e->fig[fig];
+	struct ik_constraint_def def = ik_constraint_default_def();
+	if ((def.effector_site = model_find_site(f->model, c->argv[1])) < 0)
+		return cmd_fail(c, "not-found", "no site '%.60s' on %s", c->argv[1], f->name);
+	const char *start = cmd_key(c, "start");
+	if (start && (def.start_joint = model_find_joint(f->model, start)) < 0)
+		return cmd_fail(c, "not-found", "start=%.60s: no such joint", start);
+	int v = manip_view(c);
+	if (v < 0)
+		return -1;
+	def.pos = IK_POINT;
+	def.ori = IK_FRAME;
+	def.goal_site = -1;
+	def.goal_xf = f->state->site_xf[def.effector_site];
+	/* one drag at a time: a drag constraint left from before is replaced */
+	int old = env_find_constraint(e, CMD_DRAG_CONSTRAINT);
+	if (old >= 0)
+		env_remove_constraint(e, old);
+	int slot = env_add_constraint(e, fig, CMD_DRAG_CONSTRAINT, &def);
+	if (slot < 0)
+		return cmd_fail(c, "limit", "%d constraints at most", ENV_MAX_CONSTRAINTS);
+	if (c->client < 0) /* replaying the journal: the constraint, not a mode nobody drives */
+		return 0;
+	const struct env_view *vw = &e->view[v];
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	interact_start(c->d->interact, INTERACT_DRAG, fig, v, &def.goal_xf, &def.goal_xf, &cam,
+		       vw->width, vw->height);
+	c->d->interact->tag = f->gen;
+	c->d->interact->con = slot;
+	c->d->interact->con_tag = e->con[slot].gen;
+	char id[32];
+	env_constraint_id(e, slot, id);
+	json_object_set_new(c->result, "mode", json_string("drag"));
+	json_object_set_new(c->result, "view", json_string(vw->name));
+	json_object_set_new(c->result, "constraint", json_string(id));
 	return 0;
 }
 

@@ -61,6 +61,9 @@ enum sub_kind {
 	SUB_INPUT = 1 << 6,     /* every input event, decoded, as the loop takes it */
 };
 
+/* the name of the constraint a drag holds its site with (cmd_manip.c; the loop ends it) */
+#define CMD_DRAG_CONSTRAINT "drag"
+
 struct daemon {
 	struct env env;
 	char state_dir[4096];

@@ -72,6 +72,18 @@ virtual_now(void *ctx)
 	return L->virtual_us += 20;
 }
 
+/* a drag ended: its constraint deleted as a command, so the journal has it too */
+static void
+end_drag(struct loop *L)
+{
+	static const char line[] = "delete constraint " CMD_DRAG_CONSTRAINT;
+	struct cmd_outcome out;
+	cmd_run(&L->d, -1, line, sizeof line - 1, &out);
+	if (out.mutated && journal_command(&L->j, &L->d, line, sizeof line - 1) < 0)
+		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	free(out.json);
+}
+
 /* an input event to the interactive mode; its target applied at once */
 static void
 drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
@@ -82,19 +94,41 @@ drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
 	struct env *env = &L->d.env;
 	const struct env_view *vw = ia->view >= 0 ? &env->view[ia->view] : NULL;
 	struct env_figure *f = ia->fig >= 0 ? &env->fig[ia->fig] : NULL;
-	if (!vw || !vw->used || !f || f->gen != ia->tag) { /* its view or figure went away */
-		interact_end(ia);
+	struct env_constraint *con = ia->mode == INTERACT_DRAG && ia->con >= 0 ? &env->con[ia->con]
+									       : NULL;
+	if (!vw || !vw->used || !f || f->gen != ia->tag ||
+	    (ia->mode == INTERACT_DRAG && (!con || con->gen != ia->con_tag))) {
+		interact_end(ia); /* its view, figure or constraint went away */
 		return;
 	}
 	struct camera cam;
 	view_camera_of_view(vw, &cam);
+	enum interact_mode mode = ia->mode;
 	int r = interact_input(ia, e, px, py, &cam, vw->width, vw->height);
-	if ((r & INTERACT_MOVED) && ia->mode == INTERACT_FIGURE) {
-		interact_target(ia, &f->state->root_xf);
-		kin_update(f->model, f->state);
-	}
 	if (r)
 		L->scene.dirty = 1;
+	if (r & INTERACT_ENDED) {
+		if (mode == INTERACT_DRAG)
+			end_drag(L);
+		return;
+	}
+	if (mode == INTERACT_DRAG && (r & INTERACT_RELEASED)) {
+		/* §4.6.2: the orientation offset resets when a button comes up */
+		struct xform eff;
+		xform_mul(&f->state->site_xf[con->def.effector_site], &con->def.effector_offset, &eff);
+		interact_reset_orientation(ia, &eff);
+		r |= INTERACT_MOVED;
+	}
+	if (!(r & INTERACT_MOVED))
+		return;
+	if (mode == INTERACT_FIGURE) {
+		interact_target(ia, &f->state->root_xf);
+		kin_update(f->model, f->state);
+	} else if (mode == INTERACT_DRAG) {
+		struct ik_constraint_def def = con->def;
+		interact_target(ia, &def.goal_xf);
+		env_set_constraint(env, ia->con, &def);
+	}
 }
 
 /* the input queued since the last frame, taken in order */

@@ -85,6 +85,8 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	struct camera cam;
 	view_camera_of_view(vw, &cam);
 	view_begin(sc->dl, &cam, vw->width, vw->height);
+	const struct interact *ia = d->interact;
+	int manipulating = ia && ia->mode != INTERACT_NONE && ia->view == v;
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
 		struct env_figure *f = &e->fig[i];
 		if (!f->gen)
@@ -97,15 +99,14 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 			sc->mesh_gen[i] = f->gen;
 		}
 		view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
-		if (!vw->icons)
+		int dragged = manipulating && ia->mode == INTERACT_DRAG && ia->fig == i;
+		if (!vw->icons && !dragged)
 			continue;
-		if (f->is_human)
+		if (f->is_human && vw->icons)
 			view_add_balance(sc->dl, f->model, f->state);
 		env_sync_solver(e, i);
 		view_add_goals(sc->dl, f->ik, f->model, f->state);
 	}
-	const struct interact *ia = d->interact;
-	int manipulating = ia && ia->mode != INTERACT_NONE && ia->view == v;
 	if (manipulating)
 		scene_add_manip(sc->dl, ia);
 	char status[200];

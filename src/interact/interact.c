@@ -49,6 +49,8 @@ interact_start(struct interact *ia, enum interact_mode mode, int fig, int view,
 	ia->mode = mode;
 	ia->fig = fig;
 	ia->tag = 0;
+	ia->con = -1;
+	ia->con_tag = 0;
 	ia->view = view;
 	ia->cam = *cam;
 	ia->width = w;
@@ -94,6 +96,9 @@ interact_input(struct interact *ia, const struct input_event_rec *e, long px, lo
 			interact_end(ia);
 			return INTERACT_ENDED;
 		}
+		if (e->kind == INPUT_BUTTON && e->value == 0 &&
+		    (e->code == BTN_LEFT || e->code == BTN_MIDDLE || e->code == BTN_RIGHT))
+			out |= INTERACT_RELEASED;
 		/* buttons, SHIFT, CONTROL and ALT make the chord */
 		if (manip_event(&ia->m, e)) {
 			out |= INTERACT_ICONS;
@@ -137,6 +142,14 @@ interact_target(const struct interact *ia, struct xform *dest)
 }
 
 void
+interact_reset_orientation(struct interact *ia, const struct xform *effector)
+{
+	struct xform g = ia->m.g;
+	memcpy(g.r, effector->r, sizeof g.r);
+	manip_set(&ia->m, &g);
+}
+
+void
 interact_end(struct interact *ia)
 {
 	ia->mode = INTERACT_NONE;
@@ -152,6 +165,8 @@ interact_mode_to_str(enum interact_mode m)
 		return "none";
 	case INTERACT_FIGURE:
 		return "figure";
+	case INTERACT_DRAG:
+		return "drag";
 	}
 	return "none";
 }

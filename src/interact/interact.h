@@ -26,12 +26,14 @@
 enum interact_mode {
 	INTERACT_NONE,
 	INTERACT_FIGURE, /* manipulate figure: the figure's location follows G */
+	INTERACT_DRAG,   /* drag: G is the goal of a constraint on a site (§4.6.1) */
 };
 
 /* what interact_input did */
 #define INTERACT_MOVED 0x1 /* G moved: apply interact_target() */
 #define INTERACT_ENDED 0x2 /* the mode ended (ESC) */
 #define INTERACT_ICONS 0x4 /* the chord changed: the icons change, G did not move */
+#define INTERACT_RELEASED 0x8 /* a button came up (dragging: the orientation offset resets) */
 
 #define INTERACT_MESSAGE_MAX 128
 
@@ -39,6 +41,8 @@ struct interact {
 	enum interact_mode mode;
 	int fig;              /* the object: a figure slot */
 	unsigned long tag;    /* the caller's: e.g. the slot's generation, to tell a reused slot */
+	int con;              /* dragging: the constraint whose goal G is, and its tag */
+	unsigned long con_tag;
 	int view;             /* the view the pointer is in */
 	double px, py;        /* the pointer, the view's pixels (origin top left) */
 	struct camera cam;    /* the camera the operator last saw */
@@ -70,6 +74,14 @@ int interact_input(struct interact *ia, const struct input_event_rec *e, long px
 
 /* where the object goes: G times the offset */
 void interact_target(const struct interact *ia, struct xform *dest);
+
+/*
+ * Dragging (§4.6.2): when a button comes up, the orientation offset
+ * between G and the effector resets: G takes the effector's orientation
+ * (at effector, world), keeping its origin; the next motion goes on from
+ * there.
+ */
+void interact_reset_orientation(struct interact *ia, const struct xform *effector);
 
 void interact_end(struct interact *ia);
 

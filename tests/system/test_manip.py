@@ -215,3 +215,66 @@ def test_the_icons_show_as_soon_as_the_chord_changes(daemon):
     assert any(strong(p, 0) for p in changed), "no red x axis"
     assert any(strong(p, 1) for p in changed), "no green y axis"
     assert any(strong(p, 2) for p in changed), "no blue z axis"
+
+
+def site_pos(c, name):
+    return c.request(f"get site human {name}")["position"]
+
+
+def test_dragging_a_hand_the_solver_follows_g_and_esc_ends_it(daemon):
+    """§4.6.1: G is the goal of a constraint on the site; the solver brings the hand to G
+    frame by frame; §4.6.2: when the button comes up G takes the hand's orientation; ESC
+    deletes the constraint and the posture stays."""
+    with daemon.client() as c:
+        setup(c)
+        start = site_pos(c, "hand_r.palm")
+        reply = c.request("drag human hand_r.palm start=shoulder_r view=front")
+        assert reply["mode"] == "drag" and reply["view"] == "front"
+        g = c.request("get manip")
+        assert g["mode"] == "drag" and g["position"] == pytest.approx(start, abs=1e-12)
+        assert [x["name"] for x in c.request("list constraints human")["constraints"]] == ["drag"]
+        # drag along x, 5 cm outwards from the hand's side (the view looks along -z)
+        o, d = ray(c, "front", 160, 120)
+        c.request("input pointer front 160 120")
+        c.request("input button left down")
+        s0 = nearest_on_axis(start, [1, 0, 0], o, d)
+        target_x = start[0] - 0.05  # the right hand is on -x; outwards, within reach
+        # the pixel whose mouse line is nearest the axis at target_x: search the row
+        best = min(range(0, 321), key=lambda px: abs(
+            nearest_on_axis(start, [1, 0, 0], *ray(c, "front", px, 120)) - s0 - (target_x - start[0])))
+        c.request(f"input pointer front {best} 120")
+        g = c.request("get manip")
+        assert g["position"][0] == pytest.approx(target_x, abs=0.01)
+        c.request("settle frames=60")
+        hand = site_pos(c, "hand_r.palm")
+        assert math.dist(hand, g["position"]) < 0.002, (hand, g["position"])
+        c.request("input button left up")
+        after_up = c.request("get manip")
+        assert after_up["position"] == pytest.approx(g["position"], abs=1e-12)
+        c.request("input key KEY_ESC down")
+        assert c.request("get manip")["mode"] == "none"
+        assert c.request("list constraints human")["constraints"] == []
+        c.request("settle frames=10")
+        assert site_pos(c, "hand_r.palm") == pytest.approx(hand, abs=1e-3)
+
+
+def test_a_drag_survives_a_restart_as_its_journal_says(daemon):
+    """The drag command is journaled, and so is the end of the drag (the constraint's
+    deletion): a restart after ESC has no drag constraint and the dragged posture."""
+    with daemon.client() as c:
+        setup(c)
+        c.request("drag human hand_r.palm start=shoulder_r")
+        c.request("input pointer front 160 120")
+        c.request("input button left down")
+        c.request("input pointer front 120 120")
+        c.request("settle frames=30")
+        c.request("input button left up")
+        c.request("input key KEY_ESC down")
+        hand = site_pos(c, "hand_r.palm")
+        assert c.request("list constraints human")["constraints"] == []
+    daemon.kill9()
+    daemon.start()
+    with daemon.client() as c:
+        assert c.request("list constraints human")["constraints"] == []
+        assert site_pos(c, "hand_r.palm") == pytest.approx(hand, abs=1e-6)
+        assert c.request("get manip")["mode"] == "none"
