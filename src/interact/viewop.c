@@ -169,7 +169,10 @@ viewop_snap_step(struct viewop_snap *s, uint64_t now_us, uint64_t total_us, doub
 		p = 1;
 	else if (min_turn > 0)
 		p = fmax(p, s->progress + min_turn / s->turn);
-	p = fmax(fmin(p, 1), s->progress);
+	/* a sum of minimum steps may fall short of 1 by a rounding: that is the end too */
+	if (p > 1 - 1e-9)
+		p = 1;
+	p = fmax(p, s->progress);
 	s->progress = p;
 	viewop_snap_at(s, p, dest);
 	return p < 1;
