@@ -3,6 +3,7 @@
  * starts the mode the kiosk starts, the input lines (and the devices) drive
  * it through the loop, ESC ends it, `get manip` says where G is.
  */
+#include <stdio.h>
 #include <string.h>
 
 #include "daemon/cmd_ctx.h"
@@ -54,6 +55,41 @@ cmd_manipulate_figure(struct cmd_ctx *c)
 	c->d->interact->tag = f->gen;
 	json_object_set_new(c->result, "mode", json_string("figure"));
 	json_object_set_new(c->result, "view", json_string(vw->name));
+	return 0;
+}
+
+/* manipulate joint FIG JOINT [view=VIEW] (§3.8): the buttons turn its DOFs until ESC */
+int
+cmd_manipulate_joint(struct cmd_ctx *c)
+{
+	if (!c->d->interact)
+		return cmd_fail(c, "bad-argument", "this daemon takes no input");
+	for (int i = 2; i < c->argc; i++)
+		if (!words_is_key(c->argv[i], "view"))
+			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
+	int fig = cmd_figure(c, c->argv[0]);
+	if (fig < 0)
+		return -1;
+	const struct env_figure *f = &c->d->env.fig[fig];
+	int joint = model_find_joint(f->model, c->argv[1]);
+	if (joint < 0)
+		return cmd_fail(c, "not-found", "no joint '%.60s' on %s", c->argv[1], f->name);
+	if (f->model->jnt_ndof[joint] < 1)
+		return cmd_fail(c, "bad-argument", "joint %s has no DOF to move", c->argv[1]);
+	int v = manip_view(c);
+	if (v < 0)
+		return -1;
+	if (c->client < 0)
+		return 0;
+	const struct env_view *vw = &c->d->env.view[v];
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	interact_start_joint(c->d->interact, fig, v, f->model, f->state, joint, &cam, vw->width,
+			     vw->height);
+	c->d->interact->tag = f->gen;
+	json_object_set_new(c->result, "mode", json_string("joint"));
+	json_object_set_new(c->result, "view", json_string(vw->name));
+	json_object_set_new(c->result, "dofs", json_integer(f->model->jnt_ndof[joint]));
 	return 0;
 }
 
@@ -156,6 +192,20 @@ cmd_get_manip(struct cmd_ctx *c)
 	struct manip_icon ic;
 	manip_icon(&ia->m, &ic);
 	json_object_set_new(c->result, "view", json_string(c->d->env.view[ia->view].name));
+	if (ia->mode == INTERACT_JOINT) {
+		/* G on the joint's pivot; the axis: the DOF the buttons selected */
+		json_object_set_new(c->result, "position", cmd_vec(ia->m.g.p, 3));
+		json_t *rot = json_array();
+		for (int i = 0; i < 3; i++)
+			json_array_append_new(rot, cmd_vec(&ia->m.g.r[3 * i], 3));
+		json_object_set_new(c->result, "rotation", rot);
+		char dof[16];
+		snprintf(dof, sizeof dof, "dof%d", ia->jm.dof);
+		json_object_set_new(c->result, "axis", ia->jm.dof >= 0 ? json_string(dof) : json_null());
+		json_object_set_new(c->result, "state", json_string(ia->jm.dof >= 0 ? "joint" : "idle"));
+		json_object_set_new(c->result, "message", json_string(""));
+		return 0;
+	}
 	json_object_set_new(c->result, "position", cmd_vec(ia->m.g.p, 3));
 	json_t *rot = json_array();
 	for (int i = 0; i < 3; i++)

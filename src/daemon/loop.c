@@ -124,6 +124,9 @@ drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
 	if (mode == INTERACT_FIGURE) {
 		interact_target(ia, &f->state->root_xf);
 		kin_update(f->model, f->state);
+	} else if (mode == INTERACT_JOINT) {
+		f->state->q[ia->moved_dof] = ia->moved_value;
+		kin_update(f->model, f->state);
 	} else if (mode == INTERACT_DRAG) {
 		struct ik_constraint_def def = con->def;
 		interact_target(ia, &def.goal_xf);

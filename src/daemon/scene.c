@@ -49,6 +49,18 @@ scene_ready(struct scene *sc, char *err, size_t errlen)
 static void
 scene_add_manip(struct drawlist *dl, const struct interact *ia)
 {
+	if (ia->mode == INTERACT_JOINT) { /* the selected DOF's wheel with its limits (§3.8.1) */
+		if (ia->jm.dof >= 0) {
+			int dof = ia->model->jnt_dof0[ia->joint] + ia->jm.dof;
+			if (view_add_joint_wheel(dl, ia->model, ia->state, dof, 0.2) < 0) {
+				struct joint_dof_view dv;
+				interact_dof_view(ia->model, ia->state, dof, &dv);
+				view_add_translation_arrow(dl, dv.pivot, dv.axis, 0.4);
+			}
+		}
+		view_add_pointer(dl, ia->px, ia->py);
+		return;
+	}
 	struct manip_icon ic;
 	manip_icon(&ia->m, &ic);
 	view_add_frame_icon(dl, &ia->m.g, 0.25, 1);

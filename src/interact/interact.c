@@ -24,13 +24,49 @@ interact_update_message(struct interact *ia)
 	snprintf(ia->message, sizeof ia->message, "%s", r->active && r->message ? r->message : "");
 }
 
-/* a new mouse line from the pointer; 1 when G moved */
+void
+interact_dof_view(const struct model *m, const struct state *s, int dof, struct joint_dof_view *dest)
+{
+	int j = m->dof_jnt[dof];
+	double dir = s->jnt_dir[j]; /* pointing up the rooting: the child moves by -q */
+	dest->rotation = m->dof_kind[dof] == DOF_ROTATION;
+	for (int k = 0; k < 3; k++) {
+		dest->axis[k] = dir * s->dof_axis_w[3 * dof + k];
+		dest->pivot[k] = s->dof_pivot_w[3 * dof + k];
+	}
+	/* the value the mouse moves is the child's motion, dir * q */
+	dest->value = dir * s->q[dof];
+	dest->lo = dir > 0 ? m->dof_lo[dof] : -m->dof_hi[dof];
+	dest->hi = dir > 0 ? m->dof_hi[dof] : -m->dof_lo[dof];
+}
+
+/* joint mode: a new mouse line turns the selected DOF; 1 when a value changed */
+static int
+interact_joint_ray(struct interact *ia, const struct ray *r)
+{
+	if (ia->jm.dof < 0)
+		return 0;
+	int dof = ia->model->jnt_dof0[ia->joint] + ia->jm.dof;
+	struct joint_dof_view dv;
+	interact_dof_view(ia->model, ia->state, dof, &dv);
+	double v;
+	if (!joint_manip_ray(&ia->jm, &dv, r, &v))
+		return 0;
+	double dir = ia->state->jnt_dir[ia->joint];
+	ia->moved_dof = dof;
+	ia->moved_value = dir * v;
+	return 1;
+}
+
+/* a new mouse line from the pointer; 1 when G (or the joint) moved */
 static int
 interact_pointer_moved(struct interact *ia)
 {
 	struct ray r;
 	if (mouse_line(&ia->cam, ia->width, ia->height, ia->px, ia->py, &r) < 0)
 		return 0;
+	if (ia->mode == INTERACT_JOINT)
+		return interact_joint_ray(ia, &r);
 	return manip_ray(&ia->m, &r);
 }
 
@@ -100,7 +136,8 @@ interact_input(struct interact *ia, const struct input_event_rec *e, long px, lo
 		    (e->code == BTN_LEFT || e->code == BTN_MIDDLE || e->code == BTN_RIGHT))
 			out |= INTERACT_RELEASED;
 		/* buttons, SHIFT, CONTROL and ALT make the chord */
-		if (manip_event(&ia->m, e)) {
+		if (ia->mode == INTERACT_JOINT ? joint_manip_event(&ia->jm, e)
+					       : manip_event(&ia->m, e)) {
 			out |= INTERACT_ICONS;
 			/* a chord chosen where the pointer is: the line anchors it */
 			if (interact_pointer_moved(ia))
@@ -131,7 +168,10 @@ interact_input(struct interact *ia, const struct input_event_rec *e, long px, lo
 	default:
 		break;
 	}
-	interact_update_message(ia);
+	if (ia->mode == INTERACT_JOINT)
+		ia->message[0] = '\0'; /* the 20 degree rule is the operator's, not the joint's */
+	else
+		interact_update_message(ia);
 	return out;
 }
 
@@ -139,6 +179,23 @@ void
 interact_target(const struct interact *ia, struct xform *dest)
 {
 	xform_mul(&ia->m.g, &ia->offset, dest);
+}
+
+void
+interact_start_joint(struct interact *ia, int fig, int view, const struct model *m,
+		     const struct state *s, int joint, const struct camera *cam, int w, int h)
+{
+	struct xform g;
+	xform_identity(&g);
+	int dof0 = m->jnt_dof0[joint];
+	for (int k = 0; k < 3; k++)
+		g.p[k] = s->dof_pivot_w[3 * dof0 + k];
+	/* the joint first: interact_start's first mouse line reaches it (and selects nothing) */
+	ia->model = m;
+	ia->state = s;
+	ia->joint = joint;
+	joint_manip_init(&ia->jm, m->jnt_ndof[joint]);
+	interact_start(ia, INTERACT_JOINT, fig, view, &g, &g, cam, w, h);
 }
 
 void
@@ -152,6 +209,7 @@ interact_reset_orientation(struct interact *ia, const struct xform *effector)
 void
 interact_end(struct interact *ia)
 {
+	ia->jm.dof = -1;
 	ia->mode = INTERACT_NONE;
 	ia->fig = ia->view = -1;
 	ia->message[0] = '\0';
@@ -167,6 +225,8 @@ interact_mode_to_str(enum interact_mode m)
 		return "figure";
 	case INTERACT_DRAG:
 		return "drag";
+	case INTERACT_JOINT:
+		return "joint";
 	}
 	return "none";
 }

@@ -21,12 +21,16 @@
 #include "devices/event.h"
 #include "draw/view.h"
 #include "figure/mathx.h"
+#include "figure/model.h"
+#include "figure/state.h"
+#include "interact/joint_manip.h"
 #include "interact/manip.h"
 
 enum interact_mode {
 	INTERACT_NONE,
 	INTERACT_FIGURE, /* manipulate figure: the figure's location follows G */
 	INTERACT_DRAG,   /* drag: G is the goal of a constraint on a site (§4.6.1) */
+	INTERACT_JOINT,  /* manipulate joint: the buttons turn its DOFs (§3.8) */
 };
 
 /* what interact_input did */
@@ -49,6 +53,13 @@ struct interact {
 	int width, height;
 	struct manip m;
 	struct xform offset;  /* the object in G's frame */
+	/* manipulating a joint: the figure (kin_update done), the joint, and what moved */
+	const struct model *model;
+	const struct state *state;
+	int joint;
+	struct joint_manip jm;
+	int moved_dof;        /* INTERACT_MOVED in joint mode: this DOF (model index) ... */
+	double moved_value;   /* ... takes this value */
 	char message[INTERACT_MESSAGE_MAX];
 };
 
@@ -82,6 +93,19 @@ void interact_target(const struct interact *ia, struct xform *dest);
  * there.
  */
 void interact_reset_orientation(struct interact *ia, const struct xform *effector);
+
+/*
+ * Starts manipulating joint `joint` of a figure (model m, state s, kept
+ * current by the caller while the mode lasts) through a view. G sits on
+ * the joint's pivot. INTERACT_MOVED then means: set DOF moved_dof to
+ * moved_value and update the figure.
+ */
+void interact_start_joint(struct interact *ia, int fig, int view, const struct model *m,
+			  const struct state *s, int joint, const struct camera *cam, int w, int h);
+
+/* DOF dof of a figure as the mouse sees it now (kin_update done); see joint_manip.h */
+void interact_dof_view(const struct model *m, const struct state *s, int dof,
+		       struct joint_dof_view *dest);
 
 void interact_end(struct interact *ia);
 

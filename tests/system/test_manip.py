@@ -278,3 +278,73 @@ def test_a_drag_survives_a_restart_as_its_journal_says(daemon):
         assert c.request("list constraints human")["constraints"] == []
         assert site_pos(c, "hand_r.palm") == pytest.approx(hand, abs=1e-6)
         assert c.request("get manip")["mode"] == "none"
+
+
+def spoke_angle(axis, s0, s1):
+    """the signed angle turning s0 into s1 about axis (right hand), both projected"""
+    def proj(s):
+        k = dot(s, axis)
+        return [s[i] - k * axis[i] for i in range(3)]
+    a, b = proj(s0), proj(s1)
+    cross = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    return math.atan2(dot(cross, axis), dot(a, b))
+
+
+def crank_elbow(c, pixels):
+    """manipulate joint elbow_r from the side, left button, the pointer through pixels;
+    returns (pivot, the elbow's value before and after)"""
+    c.request("manipulate joint human elbow_r view=side")
+    pivot = c.request("get manip")["position"]
+    before = c.request("get joint human elbow_r")["values"][0]
+    c.request(f"input pointer side {pixels[0][0]} {pixels[0][1]}")
+    c.request("input button left down")
+    assert c.request("get joint human elbow_r")["values"][0] == before  # a press moves nothing
+    assert c.request("get manip")["axis"] == "dof0"
+    for x, y in pixels[1:]:
+        c.request(f"input pointer side {x} {y}")
+    after = c.request("get joint human elbow_r")["values"][0]
+    c.request("input button left up")
+    c.request("input key KEY_ESC down")
+    return pivot, before, after
+
+
+def test_a_joint_turns_by_the_spoke_angle_and_stops_at_its_limits(daemon):
+    """§3.8: the left button turns the elbow's one DOF (R(-x)) by the angle between the
+    first and the current spoke in the wheel's plane (through the pivot, normal -x at rest,
+    so seen from +x the wheel faces the camera); cranked on, it stops at its limit."""
+    with daemon.client() as c:
+        c.request("load human as human")
+        c.request("add view side width=320 height=240 eye=3,1.1,0 target=0,1.1,0")
+        path = [(150, 150), (140, 160), (130, 165)]
+        pivot, before, after = crank_elbow(c, path)
+        o0, d0 = ray(c, "side", *path[0])
+        o1, d1 = ray(c, "side", *path[-1])
+
+        def on_plane(o, d):  # the wheel's plane: x = pivot.x
+            t = (pivot[0] - o[0]) / d[0]
+            return [o[i] + t * d[i] - pivot[i] for i in range(3)]
+        want = spoke_angle([-1, 0, 0], on_plane(o0, d0), on_plane(o1, d1))
+        assert abs(want) > 0.05
+        lo, hi = 0.0, 2.6179938779914944
+        assert after == pytest.approx(min(max(before + want, lo), hi), abs=1e-9)
+        # cranked far the other way: the limit, exactly
+        circle = [(int(160 + 60 * math.cos(t / 10)), int(120 + 60 * math.sin(t / 10)))
+                  for t in range(0, 120, 2)]
+        _, _, a1 = crank_elbow(c, circle)
+        _, _, a2 = crank_elbow(c, circle[::-1])
+        assert sorted([a1, a2]) == [lo, hi]
+
+
+def test_a_joint_pointing_up_the_rooting_moves_as_defined(daemon):
+    """Rooted at the hand, the elbow points up the rooting: the same crank still changes its
+    value the same way (the axis and the angle are both negated)."""
+    path = [(150, 150), (140, 160), (130, 165)]
+    with daemon.client() as c:
+        c.request("load human as human")
+        c.request("add view side width=320 height=240 eye=3,1.1,0 target=0,1.1,0")
+        _, b1, a1 = crank_elbow(c, path)
+        c.request("set joint human elbow_r 0")
+        c.request("set root human hand_r.palm")
+        _, b2, a2 = crank_elbow(c, path)
+    assert b1 == b2 == 0
+    assert a1 == pytest.approx(a2, abs=1e-9) and a1 > 0.05
