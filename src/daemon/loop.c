@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <inttypes.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +24,9 @@
 #include "devices/motion_scale.h"
 #include "figure/kin.h"
 #include "interact/interact.h"
+#include "interact/mouse_line.h"
+#include "interact/pick.h"
+#include "interact/viewctl.h"
 #include "pose/attach.h"
 
 struct loop {
@@ -45,6 +49,9 @@ struct loop {
 	struct hotplug hotplug;   /* devices arriving; fd -1: not watched */
 	struct escape_chord escape; /* the grab's way out at the keyboard */
 	struct interact interact;   /* the mode the input drives */
+	struct viewctl viewctl[ENV_MAX_VIEWS]; /* change view, one machine per view (Appendix C) */
+	int pointer_view;           /* the view the pointer was last in, -1: none yet */
+	double pointer_x, pointer_y;
 	struct scene scene;   /* the views' pictures */
 	int stop;
 };
@@ -72,16 +79,146 @@ virtual_now(void *ctx)
 	return L->virtual_us += 20;
 }
 
+/* a line the loop runs as if a client sent it, journaled when it changes state */
+static void
+run_own_command(struct loop *L, const char *line)
+{
+	struct cmd_outcome out;
+	cmd_run(&L->d, -1, line, strlen(line), &out);
+	if (out.mutated && journal_command(&L->j, &L->d, line, strlen(line)) < 0)
+		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	free(out.json);
+}
+
+/* view v's camera, as change view left it, back into the view (eye and target) */
+static void
+store_camera(struct loop *L, int v, const struct camera *cam)
+{
+	struct env_view *vw = &L->d.env.view[v];
+	memcpy(vw->eye, cam->xf.p, sizeof vw->eye);
+	view_camera_vrp(cam, vw->target);
+	L->scene.dirty = 1;
+}
+
+/* the view change view works in: the mode's, else the one the pointer was last in, else the first */
+static int
+current_view(const struct loop *L)
+{
+	const struct env *e = &L->d.env;
+	if (L->interact.mode != INTERACT_NONE && L->interact.view >= 0)
+		return L->interact.view;
+	if (L->pointer_view >= 0 && e->view[L->pointer_view].used)
+		return L->pointer_view;
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		if (e->view[v].used)
+			return v;
+	return -1;
+}
+
+/* the pointer outside a mode: where S picks */
+static void
+track_pointer(struct loop *L, const struct input_event_rec *e, long px, long py)
+{
+	const struct env *env = &L->d.env;
+	if (e->kind == INPUT_POINTER && (e->flags & INPUT_F_VIEW) && e->code < ENV_MAX_VIEWS) {
+		L->pointer_view = e->code;
+		L->pointer_x = e->x;
+		L->pointer_y = e->y;
+	} else if (e->kind == INPUT_MOTION && L->pointer_view >= 0 &&
+		   env->view[L->pointer_view].used) {
+		const struct env_view *vw = &env->view[L->pointer_view];
+		L->pointer_x = fmin(fmax(L->pointer_x + (double)px, 0), vw->width);
+		L->pointer_y = fmin(fmax(L->pointer_y + (double)py, 0), vw->height);
+	}
+}
+
+/* S picked: the snap's target is what lies under the pointer of view v */
+static void
+snap_pick(struct loop *L, int v, struct camera *cam)
+{
+	struct env *e = &L->d.env;
+	const struct env_view *vw = &e->view[v];
+	double x = L->interact.mode != INTERACT_NONE ? L->interact.px : L->pointer_x;
+	double y = L->interact.mode != INTERACT_NONE ? L->interact.py : L->pointer_y;
+	struct ray r;
+	struct pick_target t[ENV_MAX_FIGURES];
+	int n = 0;
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		const struct pick_model *pm = e->fig[i].gen ? daemon_pick_model(&L->d, i) : NULL;
+		if (pm)
+			t[n++] = (struct pick_target){ pm, e->fig[i].model, e->fig[i].state };
+	}
+	struct pick_hit h;
+	int hit = mouse_line(cam, vw->width, vw->height, x, y, &r) == 0 &&
+		  pick_scene(t, n, &r, cam->znear, &h);
+	viewctl_snap_to(&L->viewctl[v], cam, hit ? h.point : NULL, real_now(NULL));
+}
+
+/*
+ * Change view takes the event first (V enters it from any mode; inside,
+ * everything is its own). Returns 1 when it took the event.
+ */
+static int
+drive_view(struct loop *L, const struct input_event_rec *e, long px, long py)
+{
+	int v = current_view(L);
+	if (v < 0)
+		return 0;
+	struct camera cam;
+	view_camera_of_view(&L->d.env.view[v], &cam);
+	struct input_event_rec ev = *e;
+	if (ev.kind == INPUT_MOTION) { /* change view moves by pixels */
+		ev.x = (double)px;
+		ev.y = (double)py;
+	}
+	enum viewctl_result r = viewctl_event(&L->viewctl[v], &cam, L->interact.mode, &ev);
+	switch (r) {
+	case VIEWCTL_PASS:
+		return 0;
+	case VIEWCTL_CHANGED:
+		store_camera(L, v, &cam);
+		break;
+	case VIEWCTL_PICK:
+		snap_pick(L, v, &cam);
+		break;
+	case VIEWCTL_ENDED: {
+		/* the view it leaves is journaled as the command that sets it */
+		const struct env_view *vw = &L->d.env.view[v];
+		store_camera(L, v, &cam);
+		char line[256];
+		snprintf(line, sizeof line, "set camera %s eye=%.17g,%.17g,%.17g target=%.17g,%.17g,%.17g",
+			 vw->name, vw->eye[0], vw->eye[1], vw->eye[2], vw->target[0], vw->target[1],
+			 vw->target[2]);
+		run_own_command(L, line);
+		break;
+	}
+	case VIEWCTL_TAKEN:
+	case VIEWCTL_ENTERED:
+		L->scene.dirty = 1;
+		break;
+	}
+	return 1;
+}
+
+/* the snaps under way, one in-between each a frame */
+static void
+view_frames(struct loop *L, uint64_t now_us)
+{
+	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
+		if (!L->d.env.view[v].used || L->viewctl[v].state != VIEWCTL_SNAPPING)
+			continue;
+		struct camera cam;
+		view_camera_of_view(&L->d.env.view[v], &cam);
+		if (viewctl_frame(&L->viewctl[v], &cam, now_us) == VIEWCTL_CHANGED)
+			store_camera(L, v, &cam);
+	}
+}
+
 /* a drag ended: its constraint deleted as a command, so the journal has it too */
 static void
 end_drag(struct loop *L)
 {
-	static const char line[] = "delete constraint " CMD_DRAG_CONSTRAINT;
-	struct cmd_outcome out;
-	cmd_run(&L->d, -1, line, sizeof line - 1, &out);
-	if (out.mutated && journal_command(&L->j, &L->d, line, sizeof line - 1) < 0)
-		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
-	free(out.json);
+	run_own_command(L, "delete constraint " CMD_DRAG_CONSTRAINT);
 }
 
 /* an input event to the interactive mode; its target applied at once */
@@ -153,7 +290,9 @@ take_input(struct loop *L)
 					"('set input grab=yes' takes it again)\n");
 		}
 		events_input(&L->events, &e, px, py);
-		drive_mode(L, &e, px, py);
+		track_pointer(L, &e, px, py);
+		if (!drive_view(L, &e, px, py))
+			drive_mode(L, &e, px, py);
 	}
 }
 
@@ -219,6 +358,7 @@ settle_frame(struct daemon *d, int *changed)
 	struct loop *L = d->loop;
 	struct ik_clock clock = { virtual_now, L };
 	take_input(L);
+	view_frames(L, real_now(NULL)); /* a snap is eased over real time, settle or not */
 	int rc = frame(L, &clock, L->period_us, changed);
 	events_posture_changes(&L->events);
 	return rc;
@@ -389,6 +529,7 @@ live_frame(struct loop *L)
 	uint64_t draw = (uint64_t)L->d.stats.draw_us;
 	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
 	take_input(L);
+	view_frames(L, real_now(NULL));
 	frame(L, &clock, budget, &changed);
 	uint64_t now = real_now(NULL);
 	L->scene.dirty |= changed;
@@ -504,6 +645,10 @@ loop_run(const struct loop_config *cfg)
 	L->d.set_input = set_input;
 	interact_init(&L->interact);
 	L->d.interact = &L->interact;
+	struct viewctl_gains gains = viewctl_default_gains();
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		viewctl_init(&L->viewctl[v], &gains);
+	L->pointer_view = -1;
 	L->hotplug.fd = -1;
 	input_queue_init(&L->input);
 	L->d.input = &L->input;
