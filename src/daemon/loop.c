@@ -26,6 +26,7 @@
 #include "interact/interact.h"
 #include "interact/mouse_line.h"
 #include "interact/pick.h"
+#include "interact/view_adjust.h"
 #include "interact/viewctl.h"
 #include "pose/attach.h"
 
@@ -50,6 +51,7 @@ struct loop {
 	struct escape_chord escape; /* the grab's way out at the keyboard */
 	struct interact interact;   /* the mode the input drives */
 	struct viewctl viewctl[ENV_MAX_VIEWS]; /* change view, one machine per view (Appendix C) */
+	struct view_adjust adjust[ENV_MAX_VIEWS]; /* §3.7's automatic adjustments under way */
 	int pointer_view;           /* the view the pointer was last in, -1: none yet */
 	double pointer_x, pointer_y;
 	struct scene scene;   /* the views' pictures */
@@ -98,6 +100,18 @@ store_camera(struct loop *L, int v, const struct camera *cam)
 	memcpy(vw->eye, cam->xf.p, sizeof vw->eye);
 	view_camera_vrp(cam, vw->target);
 	L->scene.dirty = 1;
+}
+
+/* the view v's camera as it is now, journaled as the command that sets it */
+static void
+journal_camera(struct loop *L, int v)
+{
+	const struct env_view *vw = &L->d.env.view[v];
+	char line[256];
+	snprintf(line, sizeof line, "set camera %s eye=%.17g,%.17g,%.17g target=%.17g,%.17g,%.17g",
+		 vw->name, vw->eye[0], vw->eye[1], vw->eye[2], vw->target[0], vw->target[1],
+		 vw->target[2]);
+	run_own_command(L, line);
 }
 
 /* the view change view works in: the mode's, else the one the pointer was last in, else the first */
@@ -181,17 +195,10 @@ drive_view(struct loop *L, const struct input_event_rec *e, long px, long py)
 	case VIEWCTL_PICK:
 		snap_pick(L, v, &cam);
 		break;
-	case VIEWCTL_ENDED: {
-		/* the view it leaves is journaled as the command that sets it */
-		const struct env_view *vw = &L->d.env.view[v];
+	case VIEWCTL_ENDED:
 		store_camera(L, v, &cam);
-		char line[256];
-		snprintf(line, sizeof line, "set camera %s eye=%.17g,%.17g,%.17g target=%.17g,%.17g,%.17g",
-			 vw->name, vw->eye[0], vw->eye[1], vw->eye[2], vw->target[0], vw->target[1],
-			 vw->target[2]);
-		run_own_command(L, line);
+		journal_camera(L, v);
 		break;
-	}
 	case VIEWCTL_TAKEN:
 	case VIEWCTL_ENTERED:
 		L->scene.dirty = 1;
@@ -200,10 +207,37 @@ drive_view(struct loop *L, const struct input_event_rec *e, long px, long py)
 	return 1;
 }
 
+/* the automatic adjustments under way (§3.7): about a second, eased, then journaled */
+static void
+adjust_frames(struct loop *L, uint64_t now_us)
+{
+	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
+		struct view_adjust *va = &L->adjust[v];
+		if (!va->active)
+			continue;
+		if (!L->d.env.view[v].used) {
+			va->active = 0;
+			continue;
+		}
+		struct camera cam;
+		int more = view_adjust_step(va, now_us, VIEW_ADJUST_US, VIEW_ADJUST_MIN_TURN, &cam);
+		store_camera(L, v, &cam);
+		const struct env_view *vw = &L->d.env.view[v];
+		if (L->interact.view == v) /* the operator sees the new line of sight */
+			interact_camera(&L->interact, &cam, vw->width, vw->height);
+		if (!more) {
+			journal_camera(L, v);
+			if (!strcmp(L->d.message, "adjusting the view"))
+				L->d.message[0] = '\0';
+		}
+	}
+}
+
 /* the snaps under way, one in-between each a frame */
 static void
 view_frames(struct loop *L, uint64_t now_us)
 {
+	adjust_frames(L, now_us);
 	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
 		if (!L->d.env.view[v].used || L->viewctl[v].state != VIEWCTL_SNAPPING)
 			continue;
@@ -219,6 +253,26 @@ static void
 end_drag(struct loop *L)
 {
 	run_own_command(L, "delete constraint " CMD_DRAG_CONSTRAINT);
+}
+
+/*
+ * §3.7: the same axis chosen again after the 20 degree rule's warning
+ * turns the camera until it is clear; the operator then goes on.
+ */
+static void
+maybe_adjust_view(struct loop *L, const struct camera *cam)
+{
+	struct interact *ia = &L->interact;
+	if (ia->mode != INTERACT_FIGURE && ia->mode != INTERACT_DRAG)
+		return;
+	const struct manip_refusal *rf = manip_refusal(&ia->m);
+	struct view_adjust *va = &L->adjust[ia->view];
+	if (!rf->active || !rf->repeat || va->active)
+		return;
+	enum view_adjust_kind kind =
+		rf->sel.mode == MANIP_MODE_LINEAR ? VIEW_ADJUST_ALONG : VIEW_ADJUST_ACROSS;
+	if (view_adjust_begin(va, cam, ia->m.g.p, rf->axis, kind, ia->m.limit, real_now(NULL)) > 0)
+		snprintf(L->d.message, sizeof L->d.message, "adjusting the view");
 }
 
 /* an input event to the interactive mode; its target applied at once */
@@ -244,6 +298,7 @@ drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
 	int r = interact_input(ia, e, px, py, &cam, vw->width, vw->height);
 	if (r)
 		L->scene.dirty = 1;
+	maybe_adjust_view(L, &cam);
 	if (r & INTERACT_ENDED) {
 		if (mode == INTERACT_DRAG)
 			end_drag(L);

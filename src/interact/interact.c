@@ -117,6 +117,15 @@ interact_view_changed(struct interact *ia, const struct camera *cam, int w, int 
 	}
 }
 
+void
+interact_camera(struct interact *ia, const struct camera *cam, int w, int h)
+{
+	if (ia->mode == INTERACT_NONE)
+		return;
+	interact_view_changed(ia, cam, w, h);
+	interact_update_message(ia);
+}
+
 int
 interact_input(struct interact *ia, const struct input_event_rec *e, long px, long py,
 	       const struct camera *cam, int w, int h)

@@ -83,6 +83,9 @@ void interact_start(struct interact *ia, enum interact_mode mode, int fig, int v
 int interact_input(struct interact *ia, const struct input_event_rec *e, long px, long py,
 		   const struct camera *cam, int w, int h);
 
+/* the view's camera or size changed between events (an automatic adjustment): tell the operator */
+void interact_camera(struct interact *ia, const struct camera *cam, int w, int h);
+
 /* where the object goes: G times the offset */
 void interact_target(const struct interact *ia, struct xform *dest);
 

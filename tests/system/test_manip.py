@@ -348,3 +348,40 @@ def test_a_joint_pointing_up_the_rooting_moves_as_defined(daemon):
         _, b2, a2 = crank_elbow(c, path)
     assert b1 == b2 == 0
     assert a1 == pytest.approx(a2, abs=1e-9) and a1 > 0.05
+
+
+def test_choosing_a_refused_axis_again_turns_the_view_until_it_is_clear(daemon):
+    """§3.7: the same axis chosen again after the warning turns the camera about the
+    object's origin, eased over about a second, until the line of sight is 20 degrees clear;
+    then the held button moves G. The new view is journaled."""
+    import time
+    with daemon.client() as c:
+        setup(c, eye="0.05,6,0.05", target="0,0,0")  # looking down y
+        c.request("manipulate figure human")
+        g = c.request("get manip")["position"]
+        c.request("input button middle down")
+        assert c.request("get manip")["state"] == "refused"
+        c.request("input button middle up")
+        before = next(v for v in c.request("list views")["views"] if v["name"] == "front")
+        t0 = time.monotonic()
+        c.request("input button middle down")  # again: the adjustment
+        def front():
+            return next(v for v in c.request("list views")["views"] if v["name"] == "front")
+        # the adjustment ends focused on G's origin; the operator is free as soon as it is clear
+        while time.monotonic() - t0 < 3 and front()["target"] != pytest.approx(g, abs=1e-6):
+            time.sleep(0.02)
+        took = time.monotonic() - t0
+        assert c.request("get manip")["state"] == "linear" and 0.8 < took < 2.5, took
+        v = next(v for v in c.request("list views")["views"] if v["name"] == "front")
+        sight = [g[i] - v["eye"][i] for i in range(3)]
+        n = math.sqrt(dot(sight, sight))
+        angle = math.degrees(math.acos(abs(sight[1]) / n))
+        assert 20 <= angle < 23, angle  # clear, by the least turn (and a degree's margin)
+        assert v["target"] == pytest.approx(g, abs=1e-6)  # focused on G's origin
+        d0 = math.dist(before["eye"], g)
+        assert math.dist(v["eye"], g) == pytest.approx(d0, abs=1e-6)
+    daemon.kill9()
+    daemon.start()
+    with daemon.client() as c:
+        kept = next(x for x in c.request("list views")["views"] if x["name"] == "front")
+        assert kept["eye"] == pytest.approx(v["eye"], abs=1e-9)
