@@ -156,6 +156,39 @@ test_a_clear_view_is_left_alone_and_a_least_turn_ends_sooner(void **unused)
 	assert_int_equal(view_adjust_begin(&va, &at, origin, z, VIEW_ADJUST_ALONG, 20 * DEG, 0), -1);
 }
 
+static void
+test_visible_is_inside_the_picture_and_a_focus_turns_to_the_origin(void **unused)
+{
+	(void)unused;
+	double origin[3] = { 0, 1, 0 }, aim[3] = { 0, 1, 0 };
+	struct camera cam = camera_at(origin, 0, 0, 3, aim); /* at (0, 1, 3) looking along -z */
+	double fov = cam.fovy / 2, t = tan(fov);
+	double ahead[3] = { 0, 1, 0 }, behind[3] = { 0, 1, 4 };
+	assert_int_equal(view_adjust_visible(&cam, 400, 200, ahead), 1);
+	assert_int_equal(view_adjust_visible(&cam, 400, 200, behind), 0);
+	/* 3 m ahead the picture is 3 tan(fovy/2) high and twice that wide (400 x 200) */
+	double top_in[3] = { 0, 1 + 0.99 * 3 * t, 0 }, top_out[3] = { 0, 1 + 1.01 * 3 * t, 0 };
+	double right_in[3] = { 0.99 * 6 * t, 1, 0 }, right_out[3] = { 1.01 * 6 * t, 1, 0 };
+	assert_int_equal(view_adjust_visible(&cam, 400, 200, top_in), 1);
+	assert_int_equal(view_adjust_visible(&cam, 400, 200, top_out), 0);
+	assert_int_equal(view_adjust_visible(&cam, 400, 200, right_in), 1);
+	assert_int_equal(view_adjust_visible(&cam, 400, 200, right_out), 0);
+	/* focus: the eye stays, the reference point ends on the target, in a second */
+	double off[3] = { 5, 1, 0 };
+	struct view_adjust va;
+	assert_int_equal(view_adjust_focus(&va, &cam, off, 0), 1);
+	struct camera end;
+	double took = run(&va, 30, 0, 0, &end);
+	assert_true(fabs(took - 1) <= 1.0 / 30 + 1e-9);
+	double r[3];
+	view_camera_vrp(&end, r);
+	for (int k = 0; k < 3; k++) {
+		assert_near(end.xf.p[k], cam.xf.p[k], 1e-12);
+		assert_near(r[k], off[k], 1e-9);
+	}
+	assert_int_equal(view_adjust_visible(&end, 400, 200, off), 1);
+}
+
 int
 main(void)
 {
@@ -163,6 +196,7 @@ main(void)
 		cmocka_unit_test(test_a_translation_axis_ends_clear_of_the_line_of_sight),
 		cmocka_unit_test(test_a_wheel_ends_off_edge_on),
 		cmocka_unit_test(test_a_clear_view_is_left_alone_and_a_least_turn_ends_sooner),
+		cmocka_unit_test(test_visible_is_inside_the_picture_and_a_focus_turns_to_the_origin),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

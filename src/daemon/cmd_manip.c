@@ -28,6 +28,15 @@ manip_view(struct cmd_ctx *c)
 	return cmd_fail(c, "not-found", "no view to manipulate in: add view first");
 }
 
+/* a mode starting with G's origin off the screen turns the view to it first (§3.7) */
+static void
+manip_into_view(struct cmd_ctx *c)
+{
+	const struct interact *ia = c->d->interact;
+	if (c->d->bring_into_view)
+		c->d->bring_into_view(c->d, ia->view, ia->m.g.p);
+}
+
 int
 cmd_manipulate_figure(struct cmd_ctx *c)
 {
@@ -53,6 +62,7 @@ cmd_manipulate_figure(struct cmd_ctx *c)
 	interact_start(c->d->interact, INTERACT_FIGURE, fig, v, root, root, &cam, vw->width,
 		       vw->height);
 	c->d->interact->tag = f->gen;
+	manip_into_view(c);
 	json_object_set_new(c->result, "mode", json_string("figure"));
 	json_object_set_new(c->result, "view", json_string(vw->name));
 	return 0;
@@ -87,6 +97,7 @@ cmd_manipulate_joint(struct cmd_ctx *c)
 	interact_start_joint(c->d->interact, fig, v, f->model, f->state, joint, &cam, vw->width,
 			     vw->height);
 	c->d->interact->tag = f->gen;
+	manip_into_view(c);
 	json_object_set_new(c->result, "mode", json_string("joint"));
 	json_object_set_new(c->result, "view", json_string(vw->name));
 	json_object_set_new(c->result, "dofs", json_integer(f->model->jnt_ndof[joint]));
@@ -143,6 +154,7 @@ cmd_drag(struct cmd_ctx *c)
 	c->d->interact->tag = f->gen;
 	c->d->interact->con = slot;
 	c->d->interact->con_tag = e->con[slot].gen;
+	manip_into_view(c);
 	char id[32];
 	env_constraint_id(e, slot, id);
 	json_object_set_new(c->result, "mode", json_string("drag"));

@@ -89,6 +89,8 @@ struct daemon {
 	int (*set_input)(struct daemon *d, int grab, double gain);
 	/* the interactive mode the input drives (manipulate ...); NULL: none taken */
 	struct interact *interact;
+	/* turns view v, eased, until p is in view (§3.7), if it is not; NULL: none */
+	void (*bring_into_view)(struct daemon *d, int v, const double p[3]);
 	double pointer_gain;
 	struct pick_cache picks;
 };

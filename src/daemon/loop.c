@@ -275,6 +275,19 @@ maybe_adjust_view(struct loop *L, const struct camera *cam)
 		snprintf(L->d.message, sizeof L->d.message, "adjusting the view");
 }
 
+static void
+bring_into_view(struct daemon *d, int v, const double p[3])
+{
+	struct loop *L = d->loop;
+	if (v < 0 || v >= ENV_MAX_VIEWS || !d->env.view[v].used || L->adjust[v].active)
+		return;
+	const struct env_view *vw = &d->env.view[v];
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	if (!view_adjust_visible(&cam, vw->width, vw->height, p))
+		view_adjust_focus(&L->adjust[v], &cam, p, real_now(NULL));
+}
+
 /* an input event to the interactive mode; its target applied at once */
 static void
 drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
@@ -700,6 +713,7 @@ loop_run(const struct loop_config *cfg)
 	L->d.set_input = set_input;
 	interact_init(&L->interact);
 	L->d.interact = &L->interact;
+	L->d.bring_into_view = bring_into_view;
 	struct viewctl_gains gains = viewctl_default_gains();
 	for (int v = 0; v < ENV_MAX_VIEWS; v++)
 		viewctl_init(&L->viewctl[v], &gains);

@@ -163,3 +163,38 @@ view_adjust_step(struct view_adjust *va, uint64_t now_us, uint64_t total_us, dou
 	view_adjust_at(va, p, dest);
 	return 1;
 }
+
+int
+view_adjust_focus(struct view_adjust *va, const struct camera *cam, const double origin[3],
+		  uint64_t now_us)
+{
+	memset(va, 0, sizeof *va);
+	double d[3], u[3];
+	for (int k = 0; k < 3; k++)
+		d[k] = cam->xf.p[k] - origin[k];
+	double dist = unit3(d, u);
+	if (!dist)
+		return -1;
+	heading_elevation(u, &va->h0, &va->e0); /* the eye stays: no turn about the origin */
+	va->d0 = va->d1 = dist;
+	va->from = *cam;
+	memcpy(va->origin, origin, sizeof va->origin);
+	view_camera_vrp(cam, va->r0);
+	va->begin_us = now_us;
+	va->active = 1;
+	view_adjust_at(va, 1, &va->to);
+	return 1;
+}
+
+int
+view_adjust_visible(const struct camera *cam, int w, int h, const double p[3])
+{
+	double d[3] = { p[0] - cam->xf.p[0], p[1] - cam->xf.p[1], p[2] - cam->xf.p[2] }, c[3];
+	for (int k = 0; k < 3; k++) /* into the camera's frame: columns of r are its axes */
+		c[k] = d[0] * cam->xf.r[k] + d[1] * cam->xf.r[3 + k] + d[2] * cam->xf.r[6 + k];
+	if (!(-c[2] > cam->znear) || w <= 0 || h <= 0)
+		return 0;
+	double t = tan(cam->fovy / 2), aspect = (double)w / h;
+	double x = c[0] / (-c[2] * t * aspect), y = c[1] / (-c[2] * t);
+	return fabs(x) <= 1 && fabs(y) <= 1;
+}

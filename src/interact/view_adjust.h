@@ -60,6 +60,17 @@ int view_adjust_begin(struct view_adjust *va, const struct camera *cam, const do
 int view_adjust_step(struct view_adjust *va, uint64_t now_us, uint64_t total_us, double min_turn,
 		     struct camera *dest);
 
+/*
+ * §3.7 also focuses the view on an object whose origin is not visible: the
+ * camera stays where it is and turns (eased, VIEW_ADJUST_US) until its
+ * reference point is the origin. Returns 1, or -1 when the eye is on it.
+ */
+int view_adjust_focus(struct view_adjust *va, const struct camera *cam, const double origin[3],
+		      uint64_t now_us);
+
+/* 1 when p is in front of the camera and inside its w x h picture, 0 when not */
+int view_adjust_visible(const struct camera *cam, int w, int h, const double p[3]);
+
 /* the angle between the line of sight from cam's eye to p and the axis, folded to 0..90 degrees */
 double view_adjust_sight_angle(const struct camera *cam, const double p[3], const double axis[3]);
 

@@ -385,3 +385,20 @@ def test_choosing_a_refused_axis_again_turns_the_view_until_it_is_clear(daemon):
     with daemon.client() as c:
         kept = next(x for x in c.request("list views")["views"] if x["name"] == "front")
         assert kept["eye"] == pytest.approx(v["eye"], abs=1e-9)
+
+
+def test_a_mode_starting_off_screen_turns_the_view_to_g(daemon):
+    """§3.7: a command whose object's origin is not visible turns the view to it first."""
+    import time
+    with daemon.client() as c:
+        setup(c, eye="0,1,3", target="6,1,0")  # looking well to the right of the figure
+        c.request("manipulate figure human")
+        g = c.request("get manip")["position"]
+        t0 = time.monotonic()
+        while time.monotonic() - t0 < 3:
+            v = next(v for v in c.request("list views")["views"] if v["name"] == "front")
+            if v["target"] == pytest.approx(g, abs=1e-6):
+                break
+            time.sleep(0.02)
+        assert v["target"] == pytest.approx(g, abs=1e-6) and v["eye"] == pytest.approx([0, 1, 3])
+        assert 0.8 < time.monotonic() - t0 < 2.5
