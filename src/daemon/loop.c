@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <inttypes.h>
+#include <linux/input-event-codes.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -30,6 +31,9 @@
 #include "interact/viewctl.h"
 #include "pose/attach.h"
 
+#define LOOP_VIEW_UNDO 8 /* automatic view changes remembered per view */
+#define LOOP_EDGE_MARGIN 0.1 /* a dragged G this near the picture's edge: the view follows */
+
 struct loop {
 	struct daemon d;
 	struct server srv;
@@ -52,6 +56,9 @@ struct loop {
 	struct interact interact;   /* the mode the input drives */
 	struct viewctl viewctl[ENV_MAX_VIEWS]; /* change view, one machine per view (Appendix C) */
 	struct view_adjust adjust[ENV_MAX_VIEWS]; /* §3.7's automatic adjustments under way */
+	/* the cameras before each automatic change, newest last: C takes one back */
+	struct camera undo_view[ENV_MAX_VIEWS][LOOP_VIEW_UNDO];
+	int nundo_view[ENV_MAX_VIEWS];
 	int pointer_view;           /* the view the pointer was last in, -1: none yet */
 	double pointer_x, pointer_y;
 	struct scene scene;   /* the views' pictures */
@@ -255,6 +262,33 @@ end_drag(struct loop *L)
 	run_own_command(L, "delete constraint " CMD_DRAG_CONSTRAINT);
 }
 
+/* the camera of view v before an automatic change, for C to take it back */
+static void
+remember_view(struct loop *L, int v, const struct camera *cam)
+{
+	if (L->nundo_view[v] == LOOP_VIEW_UNDO) { /* the oldest goes */
+		memmove(&L->undo_view[v][0], &L->undo_view[v][1],
+			sizeof L->undo_view[v][0] * (LOOP_VIEW_UNDO - 1));
+		L->nundo_view[v]--;
+	}
+	L->undo_view[v][L->nundo_view[v]++] = *cam;
+}
+
+/* C in a mode: the last automatic view change taken back; 1 when there was one */
+static int
+take_back_view(struct loop *L, int v)
+{
+	if (v < 0 || !L->nundo_view[v])
+		return 0;
+	L->adjust[v].active = 0;
+	const struct camera *cam = &L->undo_view[v][--L->nundo_view[v]];
+	store_camera(L, v, cam);
+	const struct env_view *vw = &L->d.env.view[v];
+	interact_camera(&L->interact, cam, vw->width, vw->height);
+	journal_camera(L, v);
+	return 1;
+}
+
 /*
  * §3.7: the same axis chosen again after the 20 degree rule's warning
  * turns the camera until it is clear; the operator then goes on.
@@ -271,8 +305,10 @@ maybe_adjust_view(struct loop *L, const struct camera *cam)
 		return;
 	enum view_adjust_kind kind =
 		rf->sel.mode == MANIP_MODE_LINEAR ? VIEW_ADJUST_ALONG : VIEW_ADJUST_ACROSS;
-	if (view_adjust_begin(va, cam, ia->m.g.p, rf->axis, kind, ia->m.limit, real_now(NULL)) > 0)
+	if (view_adjust_begin(va, cam, ia->m.g.p, rf->axis, kind, ia->m.limit, real_now(NULL)) > 0) {
+		remember_view(L, ia->view, cam);
 		snprintf(L->d.message, sizeof L->d.message, "adjusting the view");
+	}
 }
 
 static void
@@ -284,8 +320,9 @@ bring_into_view(struct daemon *d, int v, const double p[3])
 	const struct env_view *vw = &d->env.view[v];
 	struct camera cam;
 	view_camera_of_view(vw, &cam);
-	if (!view_adjust_visible(&cam, vw->width, vw->height, p))
-		view_adjust_focus(&L->adjust[v], &cam, p, real_now(NULL));
+	if (!view_adjust_visible(&cam, vw->width, vw->height, p) &&
+	    view_adjust_focus(&L->adjust[v], &cam, p, real_now(NULL)) > 0)
+		remember_view(L, v, &cam);
 }
 
 /* an input event to the interactive mode; its target applied at once */
@@ -305,6 +342,8 @@ drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
 		interact_end(ia); /* its view, figure or constraint went away */
 		return;
 	}
+	if (e->kind == INPUT_KEY && e->code == KEY_C && e->value == 1 && take_back_view(L, ia->view))
+		return;
 	struct camera cam;
 	view_camera_of_view(vw, &cam);
 	enum interact_mode mode = ia->mode;
@@ -326,6 +365,11 @@ drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
 	}
 	if (!(r & INTERACT_MOVED))
 		return;
+	/* beyond the dissertation: a dragged G near the edge of the picture, the view follows */
+	if ((mode == INTERACT_FIGURE || mode == INTERACT_DRAG) && !L->adjust[ia->view].active &&
+	    !view_adjust_inside(&cam, vw->width, vw->height, ia->m.g.p, LOOP_EDGE_MARGIN) &&
+	    view_adjust_focus(&L->adjust[ia->view], &cam, ia->m.g.p, real_now(NULL)) > 0)
+		remember_view(L, ia->view, &cam);
 	if (mode == INTERACT_FIGURE) {
 		interact_target(ia, &f->state->root_xf);
 		kin_update(f->model, f->state);

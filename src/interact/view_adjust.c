@@ -189,6 +189,12 @@ view_adjust_focus(struct view_adjust *va, const struct camera *cam, const double
 int
 view_adjust_visible(const struct camera *cam, int w, int h, const double p[3])
 {
+	return view_adjust_inside(cam, w, h, p, 0);
+}
+
+int
+view_adjust_inside(const struct camera *cam, int w, int h, const double p[3], double margin)
+{
 	double d[3] = { p[0] - cam->xf.p[0], p[1] - cam->xf.p[1], p[2] - cam->xf.p[2] }, c[3];
 	for (int k = 0; k < 3; k++) /* into the camera's frame: columns of r are its axes */
 		c[k] = d[0] * cam->xf.r[k] + d[1] * cam->xf.r[3 + k] + d[2] * cam->xf.r[6 + k];
@@ -196,5 +202,5 @@ view_adjust_visible(const struct camera *cam, int w, int h, const double p[3])
 		return 0;
 	double t = tan(cam->fovy / 2), aspect = (double)w / h;
 	double x = c[0] / (-c[2] * t * aspect), y = c[1] / (-c[2] * t);
-	return fabs(x) <= 1 && fabs(y) <= 1;
+	return fabs(x) <= 1 - margin && fabs(y) <= 1 - margin;
 }

@@ -71,6 +71,13 @@ int view_adjust_focus(struct view_adjust *va, const struct camera *cam, const do
 /* 1 when p is in front of the camera and inside its w x h picture, 0 when not */
 int view_adjust_visible(const struct camera *cam, int w, int h, const double p[3]);
 
+/*
+ * 1 when p is in front of the camera and at least `margin` (a fraction of
+ * the picture's half width and half height) inside its edges: where a
+ * dragged object may go before the view follows it.
+ */
+int view_adjust_inside(const struct camera *cam, int w, int h, const double p[3], double margin);
+
 /* the angle between the line of sight from cam's eye to p and the axis, folded to 0..90 degrees */
 double view_adjust_sight_angle(const struct camera *cam, const double p[3], const double axis[3]);
 

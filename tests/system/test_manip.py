@@ -402,3 +402,47 @@ def test_a_mode_starting_off_screen_turns_the_view_to_g(daemon):
             time.sleep(0.02)
         assert v["target"] == pytest.approx(g, abs=1e-6) and v["eye"] == pytest.approx([0, 1, 3])
         assert 0.8 < time.monotonic() - t0 < 2.5
+
+
+def wait_view(c, name, pred, limit=3):
+    import time
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < limit:
+        v = next(v for v in c.request("list views")["views"] if v["name"] == name)
+        if pred(v):
+            return v
+        time.sleep(0.02)
+    return v
+
+
+def test_c_takes_an_automatic_view_change_back(daemon):
+    """Beyond the dissertation: every automatic view change can be taken back with one key
+    (C, as in change view), so a view a person set up is never lost."""
+    with daemon.client() as c:
+        setup(c, eye="0,1,3", target="6,1,0")  # G off screen: the view turns to it
+        before = next(v for v in c.request("list views")["views"] if v["name"] == "front")
+        c.request("manipulate figure human")
+        g = c.request("get manip")["position"]
+        wait_view(c, "front", lambda v: v["target"] == pytest.approx(g, abs=1e-6))
+        c.request("input key KEY_C down")
+        c.request("input key KEY_C up")
+        back = next(v for v in c.request("list views")["views"] if v["name"] == "front")
+        assert back["eye"] == pytest.approx(before["eye"], abs=1e-9)
+        assert back["target"] == pytest.approx(before["target"], abs=1e-9)
+        assert c.request("get manip")["mode"] == "figure"  # the mode goes on
+
+
+def test_a_dragged_figure_near_the_edge_takes_the_view_with_it(daemon):
+    """Beyond the dissertation: while dragging, G never leaves the view: near the edge of
+    the picture the view follows it, eased."""
+    with daemon.client() as c:
+        setup(c)
+        c.request("manipulate figure human")
+        c.request("input pointer front 160 120")
+        c.request("input button left down")
+        c.request("input pointer front 318 120")  # to the right edge: G follows along x
+        g = c.request("get manip")["position"]
+        assert g[0] > 0.5
+        v = wait_view(c, "front", lambda v: v["target"] == pytest.approx(g, abs=1e-6))
+        assert v["target"] == pytest.approx(g, abs=1e-6)
+        assert v["eye"] == pytest.approx([0, 1, 3], abs=1e-9)  # it turned, it did not move
