@@ -8,7 +8,9 @@
 
 #include "daemon/cmd_ctx.h"
 #include "daemon/daemon.h"
+#include "figure/kin.h"
 #include "interact/interact.h"
+#include "pose/behave.h"
 
 /* the view a mode works through: view=NAME, else the first there is; -1 with the error set */
 static int
@@ -105,6 +107,81 @@ cmd_manipulate_joint(struct cmd_ctx *c)
 }
 
 /*
+ * manipulate hand|foot FIG left|right, manipulate com FIG (Table 5.2): the
+ * behaviour primitive's goal follows G each time it moves, as the move
+ * commands set it; the behaviours respond frame by frame.
+ */
+static int
+manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
+{
+	if (!c->d->interact)
+		return cmd_fail(c, "bad-argument", "this daemon takes no input");
+	int sided = kind != INTERACT_COM, first_key = sided ? 2 : 1;
+	for (int i = first_key; i < c->argc; i++)
+		if (!words_is_key(c->argv[i], "view"))
+			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
+	int fig = cmd_figure(c, c->argv[0]);
+	if (fig < 0)
+		return -1;
+	struct env *e = &c->d->env;
+	struct env_figure *f = &e->fig[fig];
+	if (!f->behave)
+		return cmd_fail(c, "bad-argument", "behaviours are off for %s (behave %s on)",
+				f->name, f->name);
+	int side = 0;
+	if (sided && (side = cmd_side(c, c->argv[1])) < 0)
+		return -1;
+	int v = manip_view(c);
+	if (v < 0)
+		return -1;
+	if (c->client < 0)
+		return 0;
+	env_sync_solver(e, fig);
+	const struct behave *b = f->behave;
+	struct xform g;
+	if (kind == INTERACT_HAND) {
+		g = f->state->site_xf[b->s_palm[side]];
+	} else if (kind == INTERACT_FOOT) {
+		g = f->state->site_xf[behave_foot_site(b, side)];
+	} else { /* the centre of mass, in the world's axes */
+		kin_com(f->model, f->state);
+		xform_identity(&g);
+		memcpy(g.p, f->state->com, sizeof g.p);
+	}
+	const struct env_view *vw = &e->view[v];
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	interact_start(c->d->interact, INTERACT_PRIMITIVE, fig, v, &g, &g, &cam, vw->width,
+		       vw->height);
+	c->d->interact->tag = f->gen;
+	c->d->interact->primitive = kind;
+	c->d->interact->side = side;
+	manip_into_view(c);
+	static const char *const names[] = { "hand", "foot", "com" };
+	json_object_set_new(c->result, "mode", json_string(names[kind]));
+	json_object_set_new(c->result, "view", json_string(vw->name));
+	return 0;
+}
+
+int
+cmd_manipulate_hand(struct cmd_ctx *c)
+{
+	return manipulate_primitive(c, INTERACT_HAND);
+}
+
+int
+cmd_manipulate_foot(struct cmd_ctx *c)
+{
+	return manipulate_primitive(c, INTERACT_FOOT);
+}
+
+int
+cmd_manipulate_com(struct cmd_ctx *c)
+{
+	return manipulate_primitive(c, INTERACT_COM);
+}
+
+/*
  * drag FIG SEG.SITE [start=JOINT] [view=VIEW] (§4.6.1): the site is held to
  * G by a constraint named "drag" (position and orientation, the chain from
  * the site up to JOINT, or to the root), which the solver satisfies each
@@ -190,8 +267,11 @@ cmd_get_manip(struct cmd_ctx *c)
 {
 	const struct interact *ia = c->d->interact;
 	int on = ia && ia->mode != INTERACT_NONE;
+	static const char *const primitives[] = { "hand", "foot", "com" };
 	json_object_set_new(c->result, "mode",
-			    json_string(interact_mode_to_str(on ? ia->mode : INTERACT_NONE)));
+			    json_string(on && ia->mode == INTERACT_PRIMITIVE
+						? primitives[ia->primitive]
+						: interact_mode_to_str(on ? ia->mode : INTERACT_NONE)));
 	if (!on) {
 		json_object_set_new(c->result, "view", json_null());
 		json_object_set_new(c->result, "position", json_null());

@@ -30,6 +30,7 @@
 #include "interact/view_adjust.h"
 #include "interact/viewctl.h"
 #include "pose/attach.h"
+#include "pose/behave.h"
 
 #define LOOP_VIEW_UNDO 8 /* automatic view changes remembered per view */
 #define LOOP_EDGE_MARGIN 0.1 /* a dragged G this near the picture's edge: the view follows */
@@ -325,6 +326,34 @@ bring_into_view(struct daemon *d, int v, const double p[3])
 		remember_view(L, v, &cam);
 }
 
+/* a primitive's goal from G, as its move command sets it (Table 5.2) */
+static void
+drive_primitive(struct loop *L, struct env_figure *f, const struct interact *ia)
+{
+	struct behave *b = f->behave;
+	if (!b)
+		return;
+	env_sync_solver(&L->d.env, (int)(f - L->d.env.fig));
+	struct xform g;
+	interact_target(ia, &g);
+	switch (ia->primitive) {
+	case INTERACT_HAND:
+		behave_move_hand(b, f->model, f->state, f->ik, ia->side, &g, 0);
+		break;
+	case INTERACT_FOOT:
+		behave_move_foot(b, f->model, f->state, f->ik, ia->side, &g);
+		break;
+	case INTERACT_COM: {
+		/* move com shifts by offsets: those of G since the centre of mass last went */
+		kin_com(f->model, f->state);
+		double d[3] = { g.p[0] - f->state->com[0], g.p[1] - f->state->com[1],
+				g.p[2] - f->state->com[2] };
+		behave_move_com(b, f->model, f->state, f->ik, d[0], d[2], d[1]);
+		break;
+	}
+	}
+}
+
 /* an input event to the interactive mode; its target applied at once */
 static void
 drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
@@ -376,6 +405,8 @@ drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
 	} else if (mode == INTERACT_JOINT) {
 		f->state->q[ia->moved_dof] = ia->moved_value;
 		kin_update(f->model, f->state);
+	} else if (mode == INTERACT_PRIMITIVE) {
+		drive_primitive(L, f, ia);
 	} else if (mode == INTERACT_DRAG) {
 		struct ik_constraint_def def = con->def;
 		interact_target(ia, &def.goal_xf);

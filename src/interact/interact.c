@@ -236,6 +236,8 @@ interact_mode_to_str(enum interact_mode m)
 		return "drag";
 	case INTERACT_JOINT:
 		return "joint";
+	case INTERACT_PRIMITIVE:
+		return "primitive";
 	}
 	return "none";
 }

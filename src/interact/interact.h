@@ -31,6 +31,14 @@ enum interact_mode {
 	INTERACT_FIGURE, /* manipulate figure: the figure's location follows G */
 	INTERACT_DRAG,   /* drag: G is the goal of a constraint on a site (§4.6.1) */
 	INTERACT_JOINT,  /* manipulate joint: the buttons turn its DOFs (§3.8) */
+	INTERACT_PRIMITIVE, /* a Chapter 5 primitive (Table 5.2): G feeds a behaviour command */
+};
+
+/* the primitives a mode can drive, as the behaviour commands name them */
+enum interact_primitive {
+	INTERACT_HAND, /* move hand: G is the palm's goal */
+	INTERACT_FOOT, /* move foot: G is the foot's goal */
+	INTERACT_COM,  /* move com: G's motion shifts the balance point, and the height */
 };
 
 /* what interact_input did */
@@ -58,6 +66,8 @@ struct interact {
 	const struct state *state;
 	int joint;
 	struct joint_manip jm;
+	enum interact_primitive primitive; /* INTERACT_PRIMITIVE: which, and the side */
+	int side;
 	int moved_dof;        /* INTERACT_MOVED in joint mode: this DOF (model index) ... */
 	double moved_value;   /* ... takes this value */
 	char message[INTERACT_MESSAGE_MAX];

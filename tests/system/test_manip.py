@@ -446,3 +446,53 @@ def test_a_dragged_figure_near_the_edge_takes_the_view_with_it(daemon):
         v = wait_view(c, "front", lambda v: v["target"] == pytest.approx(g, abs=1e-6))
         assert v["target"] == pytest.approx(g, abs=1e-6)
         assert v["eye"] == pytest.approx([0, 1, 3], abs=1e-9)  # it turned, it did not move
+
+
+def drag_x(c, dx, view="front"):
+    """press left at the view's centre and move the pointer so G goes dx along x"""
+    g0 = c.request("get manip")["position"]
+    o, d = ray(c, view, 160, 120)
+    s0 = nearest_on_axis(g0, [1, 0, 0], o, d)
+    best = min(range(0, 321), key=lambda px: abs(
+        nearest_on_axis(g0, [1, 0, 0], *ray(c, view, px, 120)) - s0 - dx))
+    c.request(f"input pointer {view} 160 120")
+    c.request("input button left down")
+    c.request(f"input pointer {view} {best} 120")
+    c.request("input button left up")
+    return c.request("get manip")["position"]
+
+
+@pytest.mark.parametrize("primitive,site", [("hand human right", "hand_r.palm"),
+                                            ("foot human left", "foot_l.balance")])
+def test_a_primitive_s_goal_follows_g_and_the_behaviours_respond(daemon, primitive, site):
+    """Table 5.2 as interactive modes: G starts on the primitive's site and is its goal; the
+    behaviours bring the site there frame by frame, the figure staying balanced."""
+    with daemon.client() as c:
+        setup(c)
+        c.request("behave human on")
+        c.request("settle frames=30")
+        start = site_pos(c, site)
+        reply = c.request(f"manipulate {primitive}")
+        assert reply["mode"] == primitive.split()[0]
+        g0 = c.request("get manip")["position"]
+        dx = -0.06 if "right" in primitive else 0.08
+        g = drag_x(c, dx)
+        assert g[0] - g0[0] == pytest.approx(dx, abs=0.01)
+        c.request("settle frames=120")
+        now = site_pos(c, site)  # a site of the moved limb goes as far as G
+        assert (now[0] - start[0]) == pytest.approx(g[0] - g0[0], abs=0.01), (now, start, g, g0)
+        assert c.request("get behavior human")["balance"]["margin"] > 0
+
+
+def test_moving_the_centre_of_mass_shifts_the_balance_point(daemon):
+    with daemon.client() as c:
+        setup(c)
+        c.request("behave human on")
+        c.request("settle frames=30")
+        p0 = c.request("get behavior human")["balance"]["point"]
+        assert c.request("manipulate com human")["mode"] == "com"
+        g0 = c.request("get manip")["position"]
+        g = drag_x(c, 0.04)
+        c.request("settle frames=120")
+        p1 = c.request("get behavior human")["balance"]["point"]
+        assert p1[0] - p0[0] == pytest.approx(g[0] - g0[0], abs=0.01)
