@@ -10,6 +10,9 @@
 #include "daemon/daemon.h"
 #include "figure/kin.h"
 #include "interact/interact.h"
+#include "interact/mouse_line.h"
+#include "interact/pick.h"
+#include "interact/snap.h"
 #include "pose/behave.h"
 
 /* the view a mode works through: view=NAME, else the first there is; -1 with the error set */
@@ -237,6 +240,68 @@ cmd_drag(struct cmd_ctx *c)
 	json_object_set_new(c->result, "mode", json_string("drag"));
 	json_object_set_new(c->result, "view", json_string(vw->name));
 	json_object_set_new(c->result, "constraint", json_string(id));
+	return 0;
+}
+
+/*
+ * snap KIND (B.4): in a mode, G onto the feature under the mode's pointer
+ * (the site, vertex, edge or face picked there); what the mode moves
+ * follows. Not in the joint mode, whose G is the joint's pivot.
+ */
+int
+cmd_snap(struct cmd_ctx *c)
+{
+	struct interact *ia = c->d->interact;
+	if (!ia || ia->mode == INTERACT_NONE || ia->mode == INTERACT_JOINT)
+		return cmd_fail(c, "bad-argument", "snap works in a figure, drag or primitive mode");
+	int kind = snap_kind_named(c->argv[0]);
+	if (kind < 0)
+		return cmd_fail(c, "bad-argument", "site, site_position, site_orientation, "
+				"node_position, edge_position, edge_line, edge_orientation, "
+				"face_position, face_center, face_plane or face_orientation");
+	struct env *e = &c->d->env;
+	const struct env_view *vw = &e->view[ia->view];
+	struct camera cam;
+	struct ray r;
+	view_camera_of_view(vw, &cam);
+	if (mouse_line(&cam, vw->width, vw->height, ia->px, ia->py, &r) < 0)
+		return cmd_fail(c, "internal", "no mouse line under the pointer");
+	/* the feature under the pointer, on any figure but the one being moved */
+	struct pick_target t[ENV_MAX_FIGURES];
+	int slot[ENV_MAX_FIGURES], n = 0;
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		if (!e->fig[i].gen || i == ia->fig)
+			continue;
+		const struct pick_model *pm = daemon_pick_model(c->d, i);
+		if (!pm)
+			return cmd_fail(c, "internal", "out of memory");
+		t[n] = (struct pick_target){ pm, e->fig[i].model, e->fig[i].state };
+		slot[n++] = i;
+	}
+	struct pick_hit h;
+	if (!pick_scene(t, n, &r, cam.znear, &h))
+		return cmd_fail(c, "not-found", "nothing under the pointer to snap to");
+	struct snap_feature f;
+	memset(&f, 0, sizeof f);
+	const struct env_figure *hf = &e->fig[slot[h.figure]];
+	if ((f.has_site = h.site >= 0))
+		f.site = hf->state->site_xf[h.site];
+	memcpy(f.face, h.tri, sizeof f.face);
+	memcpy(f.vertex, h.tri[h.vertex_corner], sizeof f.vertex);
+	memcpy(f.edge[0], h.tri[h.edge_corner[0]], sizeof f.edge[0]);
+	memcpy(f.edge[1], h.tri[h.edge_corner[1]], sizeof f.edge[1]);
+	struct xform g;
+	if (snap_apply((enum snap_kind)kind, &f, &ia->m.g, &g) < 0)
+		return cmd_fail(c, "bad-argument", "no %s to snap to there", c->argv[0]);
+	manip_set(&ia->m, &g);
+	if (c->d->mode_moved)
+		c->d->mode_moved(c->d);
+	char id[32];
+	env_figure_id(e, slot[h.figure], id);
+	json_object_set_new(c->result, "snapped", json_string(c->argv[0]));
+	json_object_set_new(c->result, "figure", json_string(id));
+	json_object_set_new(c->result, "segment", json_string(hf->model->seg_name[h.segment]));
+	json_object_set_new(c->result, "position", cmd_vec(g.p, 3));
 	return 0;
 }
 

@@ -91,6 +91,8 @@ struct daemon {
 	struct interact *interact;
 	/* turns view v, eased, until p is in view (§3.7), if it is not; NULL: none */
 	void (*bring_into_view)(struct daemon *d, int v, const double p[3]);
+	/* G was set from outside (a snap): what the mode moves follows; NULL: none */
+	void (*mode_moved)(struct daemon *d);
 	double pointer_gain;
 	struct pick_cache picks;
 };

@@ -354,6 +354,45 @@ drive_primitive(struct loop *L, struct env_figure *f, const struct interact *ia)
 	}
 }
 
+/* G (or the joint) moved: what the mode moves follows, at once */
+static void
+apply_mode(struct loop *L)
+{
+	struct interact *ia = &L->interact;
+	struct env *env = &L->d.env;
+	if (ia->mode == INTERACT_NONE || ia->fig < 0)
+		return;
+	struct env_figure *f = &env->fig[ia->fig];
+	switch (ia->mode) {
+	case INTERACT_FIGURE:
+		interact_target(ia, &f->state->root_xf);
+		kin_update(f->model, f->state);
+		break;
+	case INTERACT_JOINT:
+		f->state->q[ia->moved_dof] = ia->moved_value;
+		kin_update(f->model, f->state);
+		break;
+	case INTERACT_PRIMITIVE:
+		drive_primitive(L, f, ia);
+		break;
+	case INTERACT_DRAG: {
+		struct ik_constraint_def def = env->con[ia->con].def;
+		interact_target(ia, &def.goal_xf);
+		env_set_constraint(env, ia->con, &def);
+		break;
+	}
+	case INTERACT_NONE:
+		break;
+	}
+	L->scene.dirty = 1;
+}
+
+static void
+mode_moved(struct daemon *d)
+{
+	apply_mode(d->loop);
+}
+
 /* an input event to the interactive mode; its target applied at once */
 static void
 drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
@@ -399,19 +438,7 @@ drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
 	    !view_adjust_inside(&cam, vw->width, vw->height, ia->m.g.p, LOOP_EDGE_MARGIN) &&
 	    view_adjust_focus(&L->adjust[ia->view], &cam, ia->m.g.p, real_now(NULL)) > 0)
 		remember_view(L, ia->view, &cam);
-	if (mode == INTERACT_FIGURE) {
-		interact_target(ia, &f->state->root_xf);
-		kin_update(f->model, f->state);
-	} else if (mode == INTERACT_JOINT) {
-		f->state->q[ia->moved_dof] = ia->moved_value;
-		kin_update(f->model, f->state);
-	} else if (mode == INTERACT_PRIMITIVE) {
-		drive_primitive(L, f, ia);
-	} else if (mode == INTERACT_DRAG) {
-		struct ik_constraint_def def = con->def;
-		interact_target(ia, &def.goal_xf);
-		env_set_constraint(env, ia->con, &def);
-	}
+	apply_mode(L);
 }
 
 /* the input queued since the last frame, taken in order */
@@ -789,6 +816,7 @@ loop_run(const struct loop_config *cfg)
 	interact_init(&L->interact);
 	L->d.interact = &L->interact;
 	L->d.bring_into_view = bring_into_view;
+	L->d.mode_moved = mode_moved;
 	struct viewctl_gains gains = viewctl_default_gains();
 	for (int v = 0; v < ENV_MAX_VIEWS; v++)
 		viewctl_init(&L->viewctl[v], &gains);

@@ -309,12 +309,16 @@ describe(const struct pick_model *pm, const struct model *m, const struct state 
 			best_e = de;
 			dest->edge[0] = vn[i];
 			dest->edge[1] = vn[j];
+			dest->edge_corner[0] = i;
+			dest->edge_corner[1] = j;
 		}
 		double dv = dist2(local, c[k]);
 		if (dv < best_v) {
 			best_v = dv;
 			dest->vertex = vn[k];
+			dest->vertex_corner = k;
 		}
+		xform_apply(&s->seg_xf[seg], c[k], dest->tri[k]);
 	}
 
 	dest->site = -1;

@@ -50,6 +50,10 @@ struct pick_hit {
 	double point[3];  /* world, m */
 	double normal[3]; /* world, unit: the triangle's outward face normal */
 	double distance;  /* along the ray from its origin, m */
+	/* the triangle itself, world (for snapping, B.4): its corners counter-clockwise from
+	 * outside, and which of them are the nearest edge's ends and the nearest vertex */
+	double tri[3][3];
+	int edge_corner[2], vertex_corner;
 };
 
 /*

@@ -496,3 +496,51 @@ def test_moving_the_centre_of_mass_shifts_the_balance_point(daemon):
         c.request("settle frames=120")
         p1 = c.request("get behavior human")["balance"]["point"]
         assert p1[0] - p0[0] == pytest.approx(g[0] - g0[0], abs=0.01)
+
+
+def test_snapping_onto_what_is_under_the_pointer(daemon_factory):
+    """B.4 through the daemon: in a mode, G snaps onto the feature under the pointer (on any
+    other figure), checked against `pick` and `get site` on the same pixel."""
+    from daemon import ROOT
+    library = ["--library", str(ROOT / "src" / "figure" / "library")]
+    with daemon_factory(extra=library).client() as c:
+        setup(c)
+        c.request("load figure lib:chair.fig as chair")
+        c.request("set location chair 0.8 0 0")
+        c.request("manipulate figure human")
+        # the pixel of the chair's middle, from its root site's projection: search the row
+        hit = None
+        for x in range(200, 320, 4):
+            for y in range(130, 240, 6):
+                h = c.request(f"pick front {x} {y}")["hit"]
+                if h and h["name"] == "chair" and h["site"]:
+                    hit, px, py = h, x, y
+                    break
+            if hit:
+                break
+        assert hit, "the chair is not in view"
+        c.request(f"input pointer front {px} {py}")
+        g0 = c.request("get manip")["position"]
+        reply = c.request("snap site_position")
+        site = c.request(f"get site chair {hit['site']}")["position"]
+        assert reply["position"] == pytest.approx(site, abs=1e-9)
+        assert c.request("get manip")["position"] == pytest.approx(site, abs=1e-9)
+        # the figure went with G
+        root = c.request("show figure human")["root"]
+        assert c.request(f"get site human {root}")["position"] == pytest.approx(site, abs=1e-9)
+        # face plane: G dropped onto the plane of the face under the pointer, along its normal
+        c.request("input pointer front %d %d" % (px, py))
+        before = c.request("get manip")["position"]
+        snapped = c.request("snap face_plane")["position"]
+        n = hit["normal"]
+        assert dot(sub(snapped, hit["point"]), n) == pytest.approx(0, abs=1e-9)
+        moved = sub(snapped, before)
+        along = dot(moved, n)
+        assert [m - along * k for m, k in zip(moved, n)] == pytest.approx([0, 0, 0], abs=1e-9)
+        assert g0 != pytest.approx(snapped)
+        # bad lines
+        assert c.request_reply("snap vertex")["error"]["code"] == "bad-argument"
+        c.request("input pointer front 5 5")  # the sky
+        assert c.request_reply("snap face_center")["error"]["code"] == "not-found"
+        c.request("input key KEY_ESC down")
+        assert c.request_reply("snap site")["error"]["code"] == "bad-argument"
