@@ -305,6 +305,28 @@ cmd_snap(struct cmd_ctx *c)
 	return 0;
 }
 
+/* set manip VALUE: a typed displacement along (or turn about) the active axis, exactly */
+int
+cmd_set_manip(struct cmd_ctx *c)
+{
+	struct interact *ia = c->d->interact;
+	if (!ia || ia->mode == INTERACT_NONE || ia->mode == INTERACT_JOINT)
+		return cmd_fail(c, "bad-argument", "a value is typed in a figure, drag or primitive mode");
+	enum manip_state st = ia->m.state;
+	if (st != MANIP_LINEAR && st != MANIP_ROTATE)
+		return cmd_fail(c, "bad-argument", "no axis is active: hold a button (CONTROL: a turn)");
+	double v;
+	if (words_number(c->argv[0], st == MANIP_LINEAR ? UNIT_LENGTH : UNIT_ANGLE, &v) < 0)
+		return cmd_fail(c, "bad-number", "%s", st == MANIP_LINEAR ? "a length (10cm)"
+									  : "an angle (-30deg)");
+	if (manip_type(&ia->m, v) < 0)
+		return cmd_fail(c, "bad-argument", "not a value for this axis");
+	if (c->d->mode_moved)
+		c->d->mode_moved(c->d);
+	json_object_set_new(c->result, "position", cmd_vec(ia->m.g.p, 3));
+	return 0;
+}
+
 /* the active axis or plane: "x", "y", "z", "xy", "yz", "xz", or NULL */
 static const char *
 manip_axis_name(const struct manip_icon *ic)

@@ -10,6 +10,7 @@
 #include "interact/manip.h"
 
 #include <linux/input-event-codes.h>
+#include <math.h>
 #include <string.h>
 
 #include "interact/geom.h"
@@ -328,6 +329,7 @@ choose(struct manip *m)
 	m->refusal.active = 0;
 	m->refusal.repeat = 0;
 	m->g0 = m->g;
+	m->chord_g0 = m->g;
 	m->anchored = 0;
 	if (m->sel.mode == MANIP_MODE_IDLE || m->sel.mode == MANIP_MODE_NONE)
 		return state_of_mode(m->sel.mode);
@@ -571,6 +573,28 @@ manip_camera(struct manip *m, const struct camera *cam)
 {
 	m->cam = *cam;
 	dispatch(m, IN_CAMERA);
+}
+
+int
+manip_type(struct manip *m, double value)
+{
+	if (!isfinite(value) || (m->state != MANIP_LINEAR && m->state != MANIP_ROTATE))
+		return -1;
+	struct xform g = m->chord_g0;
+	if (m->state == MANIP_LINEAR) {
+		for (int i = 0; i < 3; i++)
+			g.p[i] += value * m->axis[i];
+	} else {
+		double r[9];
+		geom_rotation(m->axis, value, r);
+		mathx_mat3_mul(r, m->chord_g0.r, g.r);
+	}
+	m->g = g;
+	/* the mouse goes on from here: the next line anchors anew */
+	m->g0 = g;
+	m->anchored = 0;
+	m->angle = 0;
+	return 0;
 }
 
 void

@@ -134,6 +134,7 @@ struct manip {
 	/* the anchor: G and the reference when the chord or camera last changed */
 	int anchored;      /* 0 until a mouse line meets the axis, plane or wheel */
 	struct xform g0;
+	struct xform chord_g0; /* G when the chord was chosen: what a typed value counts from */
 	double axis[3];    /* world, unit: the axis, or the plane's normal */
 	double u[3], v[3]; /* the plane's axes (index order), or the wheel's (u x v = axis) */
 	double s0;         /* LINEAR: axis parameter of the nearest point */
@@ -184,6 +185,15 @@ void manip_camera(struct manip *m, const struct camera *cam);
 
 /* motion in steps of def.step and def.step_angle since the anchor (on 1) or free (0); re-anchors */
 void manip_increments(struct manip *m, int on);
+
+/*
+ * A value typed during a manipulation (Blender's way: "10cm", "-30deg"):
+ * G is the chord's starting G moved exactly that far along the active axis
+ * (LINEAR) or turned that far about it (ROTATE); the mouse goes on from
+ * there, and a further value again counts from the chord's start. Returns
+ * 0, or -1 in any other state (nothing moves).
+ */
+int manip_type(struct manip *m, double value);
 
 /* G set from outside (snapping, a command): kept, and the next mouse line re-anchors */
 void manip_set(struct manip *m, const struct xform *g);

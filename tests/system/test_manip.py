@@ -544,3 +544,32 @@ def test_snapping_onto_what_is_under_the_pointer(daemon_factory):
         assert c.request_reply("snap face_center")["error"]["code"] == "not-found"
         c.request("input key KEY_ESC down")
         assert c.request_reply("snap site")["error"]["code"] == "bad-argument"
+
+
+def test_a_typed_value_sets_the_displacement_exactly(daemon):
+    """Blender's typed values: during a drag along x, "10cm" puts G exactly 10 cm from where
+    the chord began, whatever the mouse did; a turn takes an angle; the figure follows."""
+    with daemon.client() as c:
+        setup(c)
+        c.request("manipulate figure human")
+        g0 = c.request("get manip")["position"]
+        c.request("input pointer front 100 120")
+        c.request("input button left down")
+        c.request("input pointer front 140 120")  # some motion first
+        assert c.request("set manip 10cm")["position"] == pytest.approx(
+            [g0[0] + 0.10, g0[1], g0[2]], abs=1e-12)
+        assert c.request("set manip -0.25")["position"] == pytest.approx(
+            [g0[0] - 0.25, g0[1], g0[2]], abs=1e-12)  # again from the chord's start
+        root = c.request("show figure human")["root"]
+        assert c.request(f"get site human {root}")["position"][0] == pytest.approx(g0[0] - 0.25)
+        c.request("input button left up")
+        assert c.request_reply("set manip 1cm")["error"]["code"] == "bad-argument"  # no axis
+        c.request("input key KEY_LEFTCTRL down")
+        c.request("input button right down")  # a turn about z, the wheel facing us
+        r0 = c.request("get manip")["rotation"]
+        c.request("set manip 90deg")
+        r = c.request("get manip")["rotation"]
+        # R_z(90) R0, rows: (-row 1, row 0, row 2)
+        want = [[-r0[1][j] for j in range(3)], r0[0], r0[2]]
+        assert sum(r, []) == pytest.approx(sum(want, []), abs=1e-12)
+        assert c.request_reply("set manip 10cm")["error"]["code"] == "bad-number"
