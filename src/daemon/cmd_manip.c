@@ -42,34 +42,59 @@ manip_into_view(struct cmd_ctx *c)
 		c->d->bring_into_view(c->d, ia->view, ia->m.g.p);
 }
 
-int
-cmd_manipulate_figure(struct cmd_ctx *c)
+/*
+ * What every command starting a mode checks: the daemon takes input, the
+ * words from first_key on are view= (or also `other`=), FIG names a
+ * figure (into *fig) and the view exists (into *v). 0, or -1 with the error.
+ */
+static int
+mode_args(struct cmd_ctx *c, int first_key, const char *other, int *fig, int *v)
 {
 	if (!c->d->interact)
 		return cmd_fail(c, "bad-argument", "this daemon takes no input");
-	for (int i = 1; i < c->argc; i++)
-		if (!words_is_key(c->argv[i], "view"))
+	for (int i = first_key; i < c->argc; i++)
+		if (!words_is_key(c->argv[i], "view") && !(other && words_is_key(c->argv[i], other)))
 			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
-	int fig = cmd_figure(c, c->argv[0]);
-	if (fig < 0)
+	if ((*fig = cmd_figure(c, c->argv[0])) < 0)
 		return -1;
-	int v = manip_view(c);
-	if (v < 0)
-		return -1;
+	*v = manip_view(c);
+	return *v < 0 ? -1 : 0;
+}
+
+/* the camera of view v, for a mode starting there; the view itself */
+static const struct env_view *
+mode_camera(struct cmd_ctx *c, int v, struct camera *cam)
+{
 	const struct env_view *vw = &c->d->env.view[v];
-	const struct env_figure *f = &c->d->env.fig[fig];
-	struct camera cam;
-	view_camera_of_view(vw, &cam);
-	/* G on the figure's root site, the frame its location is given in */
-	const struct xform *root = &f->state->root_xf;
+	view_camera_of_view(vw, cam);
+	return vw;
+}
+
+/* a mode started on figure fig: G brought into view, the reply's mode and view */
+static void
+mode_started(struct cmd_ctx *c, int fig, const char *mode, const struct env_view *vw)
+{
+	c->d->interact->tag = c->d->env.fig[fig].gen;
+	manip_into_view(c);
+	json_object_set_new(c->result, "mode", json_string(mode));
+	json_object_set_new(c->result, "view", json_string(vw->name));
+}
+
+int
+cmd_manipulate_figure(struct cmd_ctx *c)
+{
+	int fig, v;
+	if (mode_args(c, 1, NULL, &fig, &v) < 0)
+		return -1;
 	if (c->client < 0) /* replaying the journal: no mode nobody drives */
 		return 0;
+	struct camera cam;
+	const struct env_view *vw = mode_camera(c, v, &cam);
+	/* G on the figure's root site, the frame its location is given in */
+	const struct xform *root = &c->d->env.fig[fig].state->root_xf;
 	interact_start(c->d->interact, INTERACT_FIGURE, fig, v, root, root, &cam, vw->width,
 		       vw->height);
-	c->d->interact->tag = f->gen;
-	manip_into_view(c);
-	json_object_set_new(c->result, "mode", json_string("figure"));
-	json_object_set_new(c->result, "view", json_string(vw->name));
+	mode_started(c, fig, "figure", vw);
 	return 0;
 }
 
@@ -77,13 +102,8 @@ cmd_manipulate_figure(struct cmd_ctx *c)
 int
 cmd_manipulate_joint(struct cmd_ctx *c)
 {
-	if (!c->d->interact)
-		return cmd_fail(c, "bad-argument", "this daemon takes no input");
-	for (int i = 2; i < c->argc; i++)
-		if (!words_is_key(c->argv[i], "view"))
-			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
-	int fig = cmd_figure(c, c->argv[0]);
-	if (fig < 0)
+	int fig, v;
+	if (mode_args(c, 2, NULL, &fig, &v) < 0)
 		return -1;
 	const struct env_figure *f = &c->d->env.fig[fig];
 	int joint = model_find_joint(f->model, c->argv[1]);
@@ -91,20 +111,13 @@ cmd_manipulate_joint(struct cmd_ctx *c)
 		return cmd_fail(c, "not-found", "no joint '%.60s' on %s", c->argv[1], f->name);
 	if (f->model->jnt_ndof[joint] < 1)
 		return cmd_fail(c, "bad-argument", "joint %s has no DOF to move", c->argv[1]);
-	int v = manip_view(c);
-	if (v < 0)
-		return -1;
 	if (c->client < 0)
 		return 0;
-	const struct env_view *vw = &c->d->env.view[v];
 	struct camera cam;
-	view_camera_of_view(vw, &cam);
+	const struct env_view *vw = mode_camera(c, v, &cam);
 	interact_start_joint(c->d->interact, fig, v, f->model, f->state, joint, &cam, vw->width,
 			     vw->height);
-	c->d->interact->tag = f->gen;
-	manip_into_view(c);
-	json_object_set_new(c->result, "mode", json_string("joint"));
-	json_object_set_new(c->result, "view", json_string(vw->name));
+	mode_started(c, fig, "joint", vw);
 	json_object_set_new(c->result, "dofs", json_integer(f->model->jnt_ndof[joint]));
 	return 0;
 }
@@ -117,25 +130,15 @@ cmd_manipulate_joint(struct cmd_ctx *c)
 static int
 manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 {
-	if (!c->d->interact)
-		return cmd_fail(c, "bad-argument", "this daemon takes no input");
-	int sided = kind != INTERACT_COM, first_key = sided ? 2 : 1;
-	for (int i = first_key; i < c->argc; i++)
-		if (!words_is_key(c->argv[i], "view"))
-			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
-	int fig = cmd_figure(c, c->argv[0]);
-	if (fig < 0)
+	int sided = kind != INTERACT_COM, fig, v, side = 0;
+	if (mode_args(c, sided ? 2 : 1, NULL, &fig, &v) < 0)
 		return -1;
 	struct env *e = &c->d->env;
 	struct env_figure *f = &e->fig[fig];
 	if (!f->behave)
 		return cmd_fail(c, "bad-argument", "behaviours are off for %s (behave %s on)",
 				f->name, f->name);
-	int side = 0;
 	if (sided && (side = cmd_side(c, c->argv[1])) < 0)
-		return -1;
-	int v = manip_view(c);
-	if (v < 0)
 		return -1;
 	if (c->client < 0)
 		return 0;
@@ -151,18 +154,14 @@ manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 		xform_identity(&g);
 		memcpy(g.p, f->state->com, sizeof g.p);
 	}
-	const struct env_view *vw = &e->view[v];
 	struct camera cam;
-	view_camera_of_view(vw, &cam);
+	const struct env_view *vw = mode_camera(c, v, &cam);
 	interact_start(c->d->interact, INTERACT_PRIMITIVE, fig, v, &g, &g, &cam, vw->width,
 		       vw->height);
-	c->d->interact->tag = f->gen;
 	c->d->interact->primitive = kind;
 	c->d->interact->side = side;
-	manip_into_view(c);
 	static const char *const names[] = { "hand", "foot", "com" };
-	json_object_set_new(c->result, "mode", json_string(names[kind]));
-	json_object_set_new(c->result, "view", json_string(vw->name));
+	mode_started(c, fig, names[kind], vw);
 	return 0;
 }
 
@@ -194,13 +193,8 @@ cmd_manipulate_com(struct cmd_ctx *c)
 int
 cmd_drag(struct cmd_ctx *c)
 {
-	if (!c->d->interact)
-		return cmd_fail(c, "bad-argument", "this daemon takes no input");
-	for (int i = 2; i < c->argc; i++)
-		if (!words_is_key(c->argv[i], "view") && !words_is_key(c->argv[i], "start"))
-			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
-	int fig = cmd_figure(c, c->argv[0]);
-	if (fig < 0)
+	int fig, v;
+	if (mode_args(c, 2, "start", &fig, &v) < 0)
 		return -1;
 	struct env *e = &c->d->env;
 	struct env_figure *f = &e->fig[fig];
@@ -210,9 +204,6 @@ cmd_drag(struct cmd_ctx *c)
 	const char *start = cmd_key(c, "start");
 	if (start && (def.start_joint = model_find_joint(f->model, start)) < 0)
 		return cmd_fail(c, "not-found", "start=%.60s: no such joint", start);
-	int v = manip_view(c);
-	if (v < 0)
-		return -1;
 	def.pos = IK_POINT;
 	def.ori = IK_FRAME;
 	def.goal_site = -1;
@@ -226,19 +217,15 @@ cmd_drag(struct cmd_ctx *c)
 		return cmd_fail(c, "limit", "%d constraints at most", ENV_MAX_CONSTRAINTS);
 	if (c->client < 0) /* replaying the journal: the constraint, not a mode nobody drives */
 		return 0;
-	const struct env_view *vw = &e->view[v];
 	struct camera cam;
-	view_camera_of_view(vw, &cam);
+	const struct env_view *vw = mode_camera(c, v, &cam);
 	interact_start(c->d->interact, INTERACT_DRAG, fig, v, &def.goal_xf, &def.goal_xf, &cam,
 		       vw->width, vw->height);
-	c->d->interact->tag = f->gen;
 	c->d->interact->con = slot;
 	c->d->interact->con_tag = e->con[slot].gen;
-	manip_into_view(c);
+	mode_started(c, fig, "drag", vw);
 	char id[32];
 	env_constraint_id(e, slot, id);
-	json_object_set_new(c->result, "mode", json_string("drag"));
-	json_object_set_new(c->result, "view", json_string(vw->name));
 	json_object_set_new(c->result, "constraint", json_string(id));
 	return 0;
 }
