@@ -254,23 +254,15 @@ cmd_snap(struct cmd_ctx *c)
 	if (mouse_line(&cam, vw->width, vw->height, ia->px, ia->py, &r) < 0)
 		return cmd_fail(c, "internal", "no mouse line under the pointer");
 	/* the feature under the pointer, on any figure but the one being moved */
-	struct pick_target t[ENV_MAX_FIGURES];
-	int slot[ENV_MAX_FIGURES], n = 0;
-	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
-		if (!e->fig[i].gen || i == ia->fig)
-			continue;
-		const struct pick_model *pm = daemon_pick_model(c->d, i);
-		if (!pm)
-			return cmd_fail(c, "internal", "out of memory");
-		t[n] = (struct pick_target){ pm, e->fig[i].model, e->fig[i].state };
-		slot[n++] = i;
-	}
 	struct pick_hit h;
-	if (!pick_scene(t, n, &r, cam.znear, &h))
+	int hit_fig, hit = daemon_pick(c->d, &r, cam.znear, ia->fig, &h, &hit_fig);
+	if (hit < 0)
+		return cmd_fail(c, "internal", "out of memory");
+	if (!hit)
 		return cmd_fail(c, "not-found", "nothing under the pointer to snap to");
 	struct snap_feature f;
 	memset(&f, 0, sizeof f);
-	const struct env_figure *hf = &e->fig[slot[h.figure]];
+	const struct env_figure *hf = &e->fig[hit_fig];
 	if ((f.has_site = h.site >= 0))
 		f.site = hf->state->site_xf[h.site];
 	memcpy(f.face, h.tri, sizeof f.face);
@@ -284,7 +276,7 @@ cmd_snap(struct cmd_ctx *c)
 	if (c->d->mode_moved)
 		c->d->mode_moved(c->d);
 	char id[32];
-	env_figure_id(e, slot[h.figure], id);
+	env_figure_id(e, hit_fig, id);
 	json_object_set_new(c->result, "snapped", json_string(c->argv[0]));
 	json_object_set_new(c->result, "figure", json_string(id));
 	json_object_set_new(c->result, "segment", json_string(hf->model->seg_name[h.segment]));

@@ -59,22 +59,13 @@ cmd_pick(struct cmd_ctx *c)
 	/* what lies nearer than the near plane is clipped from the picture: not hit either */
 	double ahead = -(r.d[0] * cam.xf.r[2] + r.d[1] * cam.xf.r[5] + r.d[2] * cam.xf.r[8]);
 	double tmin = ahead > 0 ? cam.znear / ahead : 0;
-	struct pick_target t[ENV_MAX_FIGURES];
-	int slot[ENV_MAX_FIGURES], n = 0;
-	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
-		if (!e->fig[i].gen)
-			continue;
-		const struct pick_model *pm = daemon_pick_model(c->d, i);
-		if (!pm)
-			return cmd_fail(c, "internal", "out of memory");
-		t[n] = (struct pick_target){ pm, e->fig[i].model, e->fig[i].state };
-		slot[n++] = i;
-	}
 	struct pick_hit h;
-	int hit = pick_scene(t, n, &r, tmin, &h);
+	int fig, hit = daemon_pick(c->d, &r, tmin, -1, &h, &fig);
+	if (hit < 0)
+		return cmd_fail(c, "internal", "out of memory");
 
 	json_object_set_new(c->result, "origin", cmd_vec(r.o, 3));
 	json_object_set_new(c->result, "direction", cmd_vec(r.d, 3));
-	json_object_set_new(c->result, "hit", hit ? hit_json(e, &h, slot[h.figure]) : json_null());
+	json_object_set_new(c->result, "hit", hit ? hit_json(e, &h, fig) : json_null());
 	return 0;
 }

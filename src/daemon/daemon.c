@@ -69,6 +69,27 @@ daemon_pick_model(struct daemon *d, int fig)
 	return pc->pm[fig];
 }
 
+int
+daemon_pick(struct daemon *d, const struct ray *r, double tmin, int skip, struct pick_hit *dest,
+	    int *fig)
+{
+	struct pick_target t[ENV_MAX_FIGURES];
+	int slot[ENV_MAX_FIGURES], n = 0;
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		if (!d->env.fig[i].gen || i == skip)
+			continue;
+		const struct pick_model *pm = daemon_pick_model(d, i);
+		if (!pm)
+			return -1;
+		t[n] = (struct pick_target){ pm, d->env.fig[i].model, d->env.fig[i].state };
+		slot[n++] = i;
+	}
+	if (!pick_scene(t, n, r, tmin, dest))
+		return 0;
+	*fig = slot[dest->figure];
+	return 1;
+}
+
 void
 daemon_picks_free(struct daemon *d)
 {

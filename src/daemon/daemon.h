@@ -107,6 +107,14 @@ void daemon_checkpoints_push(struct checkpoints *c, char *text, size_t len);
  * model is new to the cache; NULL when out of memory.
  */
 const struct pick_model *daemon_pick_model(struct daemon *d, int fig);
+
+/*
+ * The nearest hit of r on every figure but slot skip (-1: none skipped),
+ * not nearer than tmin: 1 with dest and the figure's slot in *fig, 0 on a
+ * miss, -1 out of memory.
+ */
+int daemon_pick(struct daemon *d, const struct ray *r, double tmin, int skip, struct pick_hit *dest,
+		int *fig);
 /* frees every cached pick model */
 void daemon_picks_free(struct daemon *d);
 

@@ -163,16 +163,9 @@ snap_pick(struct loop *L, int v, struct camera *cam)
 	double x = L->interact.mode != INTERACT_NONE ? L->interact.px : L->pointer_x;
 	double y = L->interact.mode != INTERACT_NONE ? L->interact.py : L->pointer_y;
 	struct ray r;
-	struct pick_target t[ENV_MAX_FIGURES];
-	int n = 0;
-	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
-		const struct pick_model *pm = e->fig[i].gen ? daemon_pick_model(&L->d, i) : NULL;
-		if (pm)
-			t[n++] = (struct pick_target){ pm, e->fig[i].model, e->fig[i].state };
-	}
 	struct pick_hit h;
-	int hit = mouse_line(cam, vw->width, vw->height, x, y, &r) == 0 &&
-		  pick_scene(t, n, &r, cam->znear, &h);
+	int fig, hit = mouse_line(cam, vw->width, vw->height, x, y, &r) == 0 &&
+		       daemon_pick(&L->d, &r, cam->znear, -1, &h, &fig) > 0;
 	viewctl_snap_to(&L->viewctl[v], cam, hit ? h.point : NULL, real_now(NULL));
 }
 
