@@ -15,47 +15,10 @@
 
 #include "figure/mathx.h"
 #include "interact/geom.h"
+#include "test_random.h"
 #include "test_util.h"
 
 #define TRIALS 200
-
-/* splitmix64: a seeded generator, so a failure replays */
-static uint64_t rng_state;
-
-static double
-urand(void)
-{
-	uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-	z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-	z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-	z ^= z >> 31;
-	return (double)(z >> 11) / 9007199254740992.0;
-}
-
-static double
-span(double lo, double hi)
-{
-	return lo + (hi - lo) * urand();
-}
-
-static void
-rand_vec(double lo, double hi, double dest[3])
-{
-	for (int i = 0; i < 3; i++)
-		dest[i] = span(lo, hi);
-}
-
-static void
-rand_unit(double dest[3])
-{
-	double v[3];
-	do
-		rand_vec(-1, 1, v);
-	while (mathx_dot(v, v) < 0.01 || mathx_dot(v, v) > 1);
-	double n = sqrt(mathx_dot(v, v));
-	for (int i = 0; i < 3; i++)
-		dest[i] = v[i] / n;
-}
 
 /* u, v completing the unit a to a right-handed orthonormal basis (u x v = a) */
 static void

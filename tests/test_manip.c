@@ -20,42 +20,11 @@
 #include "draw/view.h"
 #include "figure/mathx.h"
 #include "interact/manip.h"
+#include "test_random.h"
 #include "test_util.h"
 
 #define TRIALS 50
 #define DEG (M_PI / 180.0)
-
-/* splitmix64: a seeded generator, so a failure replays */
-static uint64_t rng_state;
-
-static double
-urand(void)
-{
-	uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-	z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-	z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-	z ^= z >> 31;
-	return (double)(z >> 11) / 9007199254740992.0;
-}
-
-static double
-span(double lo, double hi)
-{
-	return lo + (hi - lo) * urand();
-}
-
-static void
-rand_unit(double dest[3])
-{
-	double v[3];
-	do
-		for (int i = 0; i < 3; i++)
-			v[i] = span(-1, 1);
-	while (mathx_dot(v, v) < 0.01 || mathx_dot(v, v) > 1);
-	double n = sqrt(mathx_dot(v, v));
-	for (int i = 0; i < 3; i++)
-		dest[i] = v[i] / n;
-}
 
 /* a unit vector perpendicular to the unit a */
 static void
@@ -179,6 +148,15 @@ key(struct manip *m, uint16_t code, int down)
 
 static const uint16_t btn_of_axis[3] = { BTN_LEFT, BTN_MIDDLE, BTN_RIGHT };
 
+/* presses the chord's buttons (MANIP_LEFT... bits), left to right */
+static void
+press_buttons(struct manip *m, unsigned buttons)
+{
+	for (int k = 0; k < 3; k++)
+		if (buttons & (1u << k))
+			button(m, btn_of_axis[k], 1);
+}
+
 static void
 assert_xform_near(const struct xform *a, const struct xform *b, double tol)
 {
@@ -192,6 +170,51 @@ static void
 assert_xform_same(const struct xform *a, const struct xform *b)
 {
 	assert_memory_equal(a, b, sizeof *a);
+}
+
+/* m at g, seen through c, with the default settings */
+static void
+start(struct manip *m, const struct xform *g, const struct camera *c)
+{
+	const struct manip_def def = manip_default_def();
+	manip_init(m, &def, g, c);
+}
+
+/* the hand-worked tests' start: G at the origin, unturned, seen from eye */
+static void
+start_at_origin(struct manip *m, struct xform *g, struct camera *c, const double eye[3])
+{
+	xform_identity(g);
+	*c = cam_at(eye, g->p);
+	start(m, g, c);
+}
+
+/* the mouse line from c's eye through x, given to m; returns manip_ray's answer */
+static int
+mouse_through(struct manip *m, const struct camera *c, const double x[3])
+{
+	struct ray r = ray_to(c, x);
+	return manip_ray(m, &r);
+}
+
+/* axis k of the frame in use: G's own under SHIFT, else the world's */
+static void
+frame_axis(const struct xform *g, int shift, int k, double dest[3])
+{
+	dest[0] = dest[1] = dest[2] = 0;
+	if (shift)
+		g_axis(g, k, dest);
+	else
+		dest[k] = 1;
+}
+
+/* the plane left when axis k is left out: its axes u, v (u x v = n) and its normal n */
+static void
+plane_axes(const struct xform *g, int shift, int k, double u[3], double v[3], double n[3])
+{
+	frame_axis(g, shift, (k + 1) % 3, u);
+	frame_axis(g, shift, (k + 2) % 3, v);
+	frame_axis(g, shift, k, n);
 }
 
 /* ---- Table 3.2 ----------------------------------------------------------------- */
@@ -263,7 +286,6 @@ test_table_3_2_through_events(void **unused)
 	rng_state = 1;
 	struct xform g;
 	rand_xform(&g);
-	const struct manip_def def = manip_default_def();
 	for (size_t i = 0; i < sizeof table_3_2 / sizeof table_3_2[0]; i++) {
 		/* the eye along (1,1,1) of the frame in use: 54.7 degrees from each of its axes */
 		double eye[3], d[3] = { 1, 1, 1 };
@@ -273,7 +295,7 @@ test_table_3_2_through_events(void **unused)
 			eye[k] = g.p[k] + 3 * d[k];
 		struct camera c = cam_at(eye, g.p);
 		struct manip m;
-		manip_init(&m, &def, &g, &c);
+		start(&m, &g, &c);
 		if (table_3_2[i].shift)
 			assert_int_equal(key(&m, KEY_RIGHTSHIFT, 1), 1);
 		if (table_3_2[i].ctrl)
@@ -309,13 +331,12 @@ test_three_buttons_and_control_with_two_do_nothing(void **unused)
 {
 	(void)unused;
 	rng_state = 2;
-	const struct manip_def def = manip_default_def();
 	for (int ctrl = 0; ctrl < 2; ctrl++) {
 		struct xform g;
 		rand_xform(&g);
 		struct camera c = cam_at((double[3]){ 3, 3, 3 }, g.p);
 		struct manip m;
-		manip_init(&m, &def, &g, &c);
+		start(&m, &g, &c);
 		struct ray r = ray_near(&c, &g);
 		manip_ray(&m, &r);
 		if (ctrl)
@@ -339,11 +360,9 @@ test_events_that_change_nothing(void **unused)
 {
 	(void)unused;
 	struct xform g;
-	xform_identity(&g);
-	struct camera c = cam_at((double[3]){ 3, 3, 3 }, g.p);
-	const struct manip_def def = manip_default_def();
+	struct camera c;
 	struct manip m;
-	manip_init(&m, &def, &g, &c);
+	start_at_origin(&m, &g, &c, (double[3]){ 3, 3, 3 });
 	assert_int_equal(key(&m, KEY_LEFTSHIFT, 1), 1);
 	assert_int_equal(key(&m, KEY_LEFTSHIFT, 2), 0);
 	assert_int_equal(key(&m, KEY_LEFTSHIFT, 1), 0);
@@ -372,24 +391,18 @@ press_at_angle(int shift, int ctrl, unsigned buttons, int axis, double theta)
 {
 	struct xform g;
 	rand_xform(&g);
-	double a[3] = { 0, 0, 0 };
-	if (shift)
-		g_axis(&g, axis, a);
-	else
-		a[axis] = 1;
+	double a[3];
+	frame_axis(&g, shift, axis, a);
 	struct camera c = cam_at_angle(&g, a, theta, span(1, 6));
-	const struct manip_def def = manip_default_def();
 	struct manip m;
-	manip_init(&m, &def, &g, &c);
+	start(&m, &g, &c);
 	struct ray r = ray_near(&c, &g);
 	manip_ray(&m, &r);
 	if (shift)
 		key(&m, KEY_LEFTSHIFT, 1);
 	if (ctrl)
 		key(&m, KEY_LEFTCTRL, 1);
-	for (int k = 0; k < 3; k++)
-		if (buttons & (1u << k))
-			button(&m, btn_of_axis[k], 1);
+	press_buttons(&m, buttons);
 	const struct manip_refusal *no = manip_refusal(&m);
 	if (m.state == MANIP_REFUSED) {
 		assert_int_equal(no->active, 1);
@@ -407,29 +420,84 @@ press_at_angle(int shift, int ctrl, unsigned buttons, int axis, double theta)
 	return m.state;
 }
 
+/* the point (a, b) of the plane through o spanned by u and v */
+static void
+plane_point(const double o[3], const double u[3], const double v[3], double a, double b,
+	    double dest[3])
+{
+	for (int e = 0; e < 3; e++)
+		dest[e] = o[e] + a * u[e] + b * v[e];
+}
+
+/* the point of the wheel about o in the plane of u and v at radius rad, angle th from u */
+static void
+wheel_point(const double o[3], const double u[3], const double v[3], double rad, double th,
+	    double dest[3])
+{
+	for (int e = 0; e < 3; e++)
+		dest[e] = o[e] + rad * (cos(th) * u[e] + sin(th) * v[e]);
+}
+
+/* an angle between the line of sight and the selection's axis (or normal); the state it gives */
+struct angle_case {
+	double theta;
+	enum manip_state want;
+};
+
+/*
+ * Every case for each axis k of either frame, TRIALS times: a single
+ * button for k (with CONTROL, the wheel), or for a plane the two buttons
+ * other than its normal k's. either_end draws, once per axis, whether
+ * the angles count from the axis toward the eye or from the far end of it.
+ */
+static void
+assert_presses_at_angles(int ctrl, int plane, int either_end, const struct angle_case *cases,
+			 size_t ncases)
+{
+	for (int t = 0; t < TRIALS; t++)
+		for (int shift = 0; shift < 2; shift++)
+			for (int k = 0; k < 3; k++) {
+				unsigned b = plane ? 7u & ~(1u << k) : 1u << k;
+				double off = either_end && urand() >= 0.5 ? M_PI : 0;
+				double s = off ? -1 : 1;
+				for (size_t i = 0; i < ncases; i++)
+					assert_int_equal(press_at_angle(shift, ctrl, b, k,
+									off + s * cases[i].theta),
+							 cases[i].want);
+			}
+}
+
+/* G at the origin seen from eye: CONTROL if ctrl, then the buttons; refused, with that message */
+static void
+assert_refused_with(const double eye[3], int ctrl, unsigned buttons, const char *message)
+{
+	struct xform g;
+	struct camera c;
+	struct manip m;
+	start_at_origin(&m, &g, &c, eye);
+	if (ctrl)
+		key(&m, KEY_LEFTCTRL, 1);
+	press_buttons(&m, buttons);
+	assert_int_equal(m.state, MANIP_REFUSED);
+	assert_string_equal(manip_refusal(&m)->message, message);
+}
+
 static void
 test_20_degree_rule_translation_along_an_axis(void **unused)
 {
 	(void)unused;
+	static const struct angle_case cases[] = {
+		{ 19 * DEG, MANIP_REFUSED },
+		{ 21 * DEG, MANIP_LINEAR },
+	};
 	rng_state = 3;
-	for (int t = 0; t < TRIALS; t++)
-		for (int shift = 0; shift < 2; shift++)
-			for (int k = 0; k < 3; k++) {
-				/* toward the eye or away from it alike */
-				double off = urand() < 0.5 ? 0 : M_PI;
-				double s = off ? -1 : 1;
-				assert_int_equal(press_at_angle(shift, 0, 1u << k, k, off + s * 19 * DEG),
-						 MANIP_REFUSED);
-				assert_int_equal(press_at_angle(shift, 0, 1u << k, k, off + s * 21 * DEG),
-						 MANIP_LINEAR);
-			}
+	/* toward the eye or away from it alike */
+	assert_presses_at_angles(0, 0, 1, cases, sizeof cases / sizeof cases[0]);
 	/* and the message */
 	struct xform g;
-	xform_identity(&g);
-	struct camera c = cam_at((double[3]){ 5, 0.1, 0 }, g.p);
-	const struct manip_def def = manip_default_def();
+	struct camera c;
 	struct manip m;
-	manip_init(&m, &def, &g, &c);
+	start_at_origin(&m, &g, &c, (double[3]){ 5, 0.1, 0 });
 	button(&m, BTN_LEFT, 1);
 	assert_string_equal(manip_refusal(&m)->message,
 			    "can't translate along that axis from this view");
@@ -440,29 +508,15 @@ static void
 test_20_degree_rule_rotation(void **unused)
 {
 	(void)unused;
+	static const struct angle_case cases[] = {
+		{ 71 * DEG, MANIP_REFUSED },
+		{ 109 * DEG, MANIP_REFUSED },
+		{ 69 * DEG, MANIP_ROTATE },
+		{ 0, MANIP_ROTATE },
+	};
 	rng_state = 4;
-	for (int t = 0; t < TRIALS; t++)
-		for (int shift = 0; shift < 2; shift++)
-			for (int k = 0; k < 3; k++) {
-				assert_int_equal(press_at_angle(shift, 1, 1u << k, k, 71 * DEG),
-						 MANIP_REFUSED);
-				assert_int_equal(press_at_angle(shift, 1, 1u << k, k, 109 * DEG),
-						 MANIP_REFUSED);
-				assert_int_equal(press_at_angle(shift, 1, 1u << k, k, 69 * DEG),
-						 MANIP_ROTATE);
-				assert_int_equal(press_at_angle(shift, 1, 1u << k, k, 0),
-						 MANIP_ROTATE);
-			}
-	struct xform g;
-	xform_identity(&g);
-	struct camera c = cam_at((double[3]){ 0, 0.1, 5 }, g.p);
-	const struct manip_def def = manip_default_def();
-	struct manip m;
-	manip_init(&m, &def, &g, &c);
-	key(&m, KEY_LEFTCTRL, 1);
-	button(&m, BTN_LEFT, 1);
-	assert_int_equal(m.state, MANIP_REFUSED);
-	assert_string_equal(manip_refusal(&m)->message,
+	assert_presses_at_angles(1, 0, 0, cases, sizeof cases / sizeof cases[0]);
+	assert_refused_with((double[3]){ 0, 0.1, 5 }, 1, MANIP_LEFT,
 			    "can't rotate around that axis from this view");
 }
 
@@ -471,29 +525,14 @@ static void
 test_20_degree_rule_planar(void **unused)
 {
 	(void)unused;
+	static const struct angle_case cases[] = {
+		{ 71 * DEG, MANIP_REFUSED },
+		{ 69 * DEG, MANIP_PLANAR },
+		{ 180 * DEG, MANIP_PLANAR },
+	};
 	rng_state = 5;
-	for (int t = 0; t < TRIALS; t++)
-		for (int shift = 0; shift < 2; shift++)
-			for (int k = 0; k < 3; k++) {
-				/* the two buttons other than the normal's */
-				unsigned b = 7u & ~(1u << k);
-				assert_int_equal(press_at_angle(shift, 0, b, k, 71 * DEG),
-						 MANIP_REFUSED);
-				assert_int_equal(press_at_angle(shift, 0, b, k, 69 * DEG),
-						 MANIP_PLANAR);
-				assert_int_equal(press_at_angle(shift, 0, b, k, 180 * DEG),
-						 MANIP_PLANAR);
-			}
-	struct xform g;
-	xform_identity(&g);
-	struct camera c = cam_at((double[3]){ 0, 0.1, 5 }, g.p);
-	const struct manip_def def = manip_default_def();
-	struct manip m;
-	manip_init(&m, &def, &g, &c);
-	button(&m, BTN_LEFT, 1);
-	button(&m, BTN_RIGHT, 1);
-	assert_int_equal(m.state, MANIP_REFUSED);
-	assert_string_equal(manip_refusal(&m)->message,
+	assert_presses_at_angles(0, 1, 0, cases, sizeof cases / sizeof cases[0]);
+	assert_refused_with((double[3]){ 0, 0.1, 5 }, 0, MANIP_LEFT | MANIP_RIGHT,
 			    "can't translate in that plane from this view");
 }
 
@@ -510,9 +549,8 @@ test_refusal_repeat_and_the_camera_hook(void **unused)
 	xform_identity(&g);
 	/* looking down z: z is degenerate, x is fine */
 	struct camera c = cam_at((double[3]){ 0, 0, 5 }, g.p);
-	const struct manip_def def = manip_default_def();
 	struct manip m;
-	manip_init(&m, &def, &g, &c);
+	start(&m, &g, &c);
 	button(&m, BTN_RIGHT, 1);
 	assert_int_equal(m.state, MANIP_REFUSED);
 	assert_int_equal(manip_refusal(&m)->repeat, 0);
@@ -569,14 +607,13 @@ test_line_of_sight_runs_from_the_eye_to_g(void **unused)
 	(void)unused;
 	struct xform g;
 	xform_identity(&g);
-	const struct manip_def def = manip_default_def();
 	for (int flip = 0; flip < 2; flip++) {
 		double to_g = (flip ? 30 : 10) * DEG, look = (flip ? 10 : 30) * DEG;
 		double eye[3] = { 5 * sin(to_g), 0, 5 * cos(to_g) };
 		double target[3] = { eye[0] - sin(look), 0, eye[2] - cos(look) };
 		struct camera c = cam_at(eye, target);
 		struct manip m;
-		manip_init(&m, &def, &g, &c);
+		start(&m, &g, &c);
 		button(&m, BTN_RIGHT, 1);
 		assert_int_equal(m.state, flip ? MANIP_LINEAR : MANIP_REFUSED);
 	}
@@ -593,7 +630,6 @@ test_a_press_never_moves_g(void **unused)
 {
 	(void)unused;
 	rng_state = 6;
-	const struct manip_def def = manip_default_def();
 	int acting = 0;
 	for (int t = 0; t < TRIALS; t++) {
 		struct xform g;
@@ -615,7 +651,7 @@ test_a_press_never_moves_g(void **unused)
 			eye[k] = g.p[k] + 4 * d[k];
 		struct camera c = cam_at(eye, g.p);
 		struct manip m;
-		manip_init(&m, &def, &g, &c);
+		start(&m, &g, &c);
 		struct ray r = ray_near(&c, &g);
 		manip_ray(&m, &r);
 		/* a chord sequence through every kind of motion, a mouse line between changes */
@@ -674,20 +710,16 @@ test_linear_translation(void **unused)
 {
 	(void)unused;
 	rng_state = 7;
-	const struct manip_def def = manip_default_def();
 	for (int t = 0; t < TRIALS; t++)
 		for (int shift = 0; shift < 2; shift++)
 			for (int k = 0; k < 3; k++) {
 				struct xform g;
 				rand_xform(&g);
-				double a[3] = { 0, 0, 0 };
-				if (shift)
-					g_axis(&g, k, a);
-				else
-					a[k] = 1;
+				double a[3];
+				frame_axis(&g, shift, k, a);
 				struct camera c = cam_oblique(&g, a);
 				struct manip m;
-				manip_init(&m, &def, &g, &c);
+				start(&m, &g, &c);
 				struct ray r = ray_to(&c, g.p);
 				manip_ray(&m, &r);
 				if (shift)
@@ -730,7 +762,6 @@ test_planar_translation(void **unused)
 {
 	(void)unused;
 	rng_state = 8;
-	const struct manip_def def = manip_default_def();
 	for (int t = 0; t < TRIALS; t++)
 		for (int shift = 0; shift < 2; shift++)
 			for (int k = 0; k < 3; k++) {
@@ -738,20 +769,13 @@ test_planar_translation(void **unused)
 				rand_xform(&g);
 				/* the plane's axes i, j and its normal */
 				int i = (k + 1) % 3, j = (k + 2) % 3;
-				double u[3] = { 0, 0, 0 }, v[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 };
-				if (shift) {
-					g_axis(&g, i, u);
-					g_axis(&g, j, v);
-					g_axis(&g, k, n);
-				} else {
-					u[i] = v[j] = n[k] = 1;
-				}
+				double u[3], v[3], n[3];
+				plane_axes(&g, shift, k, u, v, n);
 				struct camera c = cam_oblique(&g, n);
 				struct manip m;
-				manip_init(&m, &def, &g, &c);
+				start(&m, &g, &c);
 				double a0 = span(-1, 1), b0 = span(-1, 1), x0[3];
-				for (int e = 0; e < 3; e++)
-					x0[e] = g.p[e] + a0 * u[e] + b0 * v[e];
+				plane_point(g.p, u, v, a0, b0, x0);
 				struct ray r = ray_to(&c, x0);
 				manip_ray(&m, &r);
 				if (shift)
@@ -766,8 +790,7 @@ test_planar_translation(void **unused)
 					double x1[3];
 					a1 = span(-1, 1);
 					b1 = span(-1, 1);
-					for (int e = 0; e < 3; e++)
-						x1[e] = g.p[e] + a1 * u[e] + b1 * v[e];
+					plane_point(g.p, u, v, a1, b1, x1);
 					r = ray_to(&c, x1);
 					manip_ray(&m, &r);
 				}
@@ -798,28 +821,19 @@ test_rotation(void **unused)
 {
 	(void)unused;
 	rng_state = 9;
-	const struct manip_def def = manip_default_def();
 	for (int t = 0; t < TRIALS; t++)
 		for (int shift = 0; shift < 2; shift++)
 			for (int k = 0; k < 3; k++) {
 				struct xform g;
 				rand_xform(&g);
-				int i = (k + 1) % 3, j = (k + 2) % 3;
-				double u[3] = { 0, 0, 0 }, v[3] = { 0, 0, 0 }, a[3] = { 0, 0, 0 };
-				if (shift) {
-					g_axis(&g, i, u);
-					g_axis(&g, j, v);
-					g_axis(&g, k, a);
-				} else {
-					u[i] = v[j] = a[k] = 1;
-				}
+				double u[3], v[3], a[3];
+				plane_axes(&g, shift, k, u, v, a);
 				/* u x v = a: angles in the wheel are counterclockwise about a */
 				struct camera c = cam_at_angle(&g, a, span(0, 60) * DEG, span(2, 6));
 				struct manip m;
-				manip_init(&m, &def, &g, &c);
+				start(&m, &g, &c);
 				double th0 = span(-M_PI, M_PI), rad = span(0.2, 1), x[3];
-				for (int e = 0; e < 3; e++)
-					x[e] = g.p[e] + rad * (cos(th0) * u[e] + sin(th0) * v[e]);
+				wheel_point(g.p, u, v, rad, th0, x);
 				struct ray r = ray_to(&c, x);
 				manip_ray(&m, &r);
 				if (shift)
@@ -838,8 +852,7 @@ test_rotation(void **unused)
 				int steps = 40;
 				for (int s = 1; s <= steps; s++) {
 					double th = th0 + turn * s / steps, rr = span(0.2, 1);
-					for (int e = 0; e < 3; e++)
-						x[e] = g.p[e] + rr * (cos(th) * u[e] + sin(th) * v[e]);
+					wheel_point(g.p, u, v, rr, th, x);
 					r = ray_to(&c, x);
 					manip_ray(&m, &r);
 				}
@@ -869,7 +882,6 @@ test_change_of_buttons_mid_drag(void **unused)
 {
 	(void)unused;
 	rng_state = 10;
-	const struct manip_def def = manip_default_def();
 	for (int t = 0; t < TRIALS; t++) {
 		struct xform g;
 		xform_identity(&g);
@@ -879,7 +891,7 @@ test_change_of_buttons_mid_drag(void **unused)
 		double eye[3] = { g.p[0] + 3, g.p[1] + 3.6, g.p[2] + 4.2 };
 		struct camera c = cam_at(eye, g.p);
 		struct manip m;
-		manip_init(&m, &def, &g, &c);
+		start(&m, &g, &c);
 		struct ray r = ray_near(&c, &g);
 		manip_ray(&m, &r);
 		button(&m, BTN_LEFT, 1);
@@ -922,28 +934,22 @@ test_camera_change_mid_drag(void **unused)
 {
 	(void)unused;
 	struct xform g;
-	xform_identity(&g);
-	struct camera c = cam_at((double[3]){ 3, 3, 4 }, g.p);
-	const struct manip_def def = manip_default_def();
+	struct camera c;
 	struct manip m;
-	manip_init(&m, &def, &g, &c);
-	struct ray r = ray_to(&c, (double[3]){ 0, 0, 0 });
-	manip_ray(&m, &r);
+	start_at_origin(&m, &g, &c, (double[3]){ 3, 3, 4 });
+	mouse_through(&m, &c, (double[3]){ 0, 0, 0 });
 	button(&m, BTN_LEFT, 1);
 	button(&m, BTN_RIGHT, 1); /* the floor plane, xz */
-	r = ray_to(&c, (double[3]){ 0.5, 0, 0.25 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0.5, 0, 0.25 });
 	assert_near(m.g.p[0], 0.5, 1e-9);
 	assert_near(m.g.p[2], 0.25, 1e-9);
 	/* the view swings round; the mouse line from the same pixel now meets the floor elsewhere */
 	struct camera c2 = cam_at((double[3]){ -2, 3, 3 }, g.p);
 	manip_camera(&m, &c2);
 	assert_int_equal(m.state, MANIP_PLANAR);
-	struct ray r2 = ray_to(&c2, (double[3]){ 1.5, 0, -1 });
-	assert_int_equal(manip_ray(&m, &r2), 0);
+	assert_int_equal(mouse_through(&m, &c2, (double[3]){ 1.5, 0, -1 }), 0);
 	assert_near(m.g.p[0], 0.5, 1e-9);
-	r2 = ray_to(&c2, (double[3]){ 1.75, 0, -0.5 });
-	manip_ray(&m, &r2);
+	mouse_through(&m, &c2, (double[3]){ 1.75, 0, -0.5 });
 	assert_near(m.g.p[0], 0.75, 1e-9);
 	assert_near(m.g.p[1], 0, 1e-12);
 	assert_near(m.g.p[2], 0.75, 1e-9);
@@ -965,19 +971,16 @@ test_shift_uses_local_axes_after_a_rotation(void **unused)
 	double eye[3] = { 3 * sin(40 * DEG) * cos(30 * DEG), 1 + 3 * cos(40 * DEG),
 			  3 * sin(40 * DEG) * sin(30 * DEG) };
 	struct camera c = cam_at(eye, g.p);
-	const struct manip_def def = manip_default_def();
 	struct manip m;
-	manip_init(&m, &def, &g, &c);
+	start(&m, &g, &c);
 	/* the wheel about y lies in the xz plane at height 1; spokes at angles about +y: z toward x */
-	struct ray r = ray_to(&c, (double[3]){ 0, 1, 0.5 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0, 1, 0.5 });
 	key(&m, KEY_LEFTCTRL, 1);
 	button(&m, BTN_MIDDLE, 1);
 	assert_int_equal(m.state, MANIP_ROTATE);
 	for (int s = 1; s <= 9; s++) {
 		double th = 10 * s * DEG;
-		r = ray_to(&c, (double[3]){ 0.5 * sin(th), 1, 0.5 * cos(th) });
-		manip_ray(&m, &r);
+		mouse_through(&m, &c, (double[3]){ 0.5 * sin(th), 1, 0.5 * cos(th) });
 	}
 	button(&m, BTN_MIDDLE, 0);
 	key(&m, KEY_LEFTCTRL, 0);
@@ -992,11 +995,9 @@ test_shift_uses_local_axes_after_a_rotation(void **unused)
 	manip_icon(&m, &icon);
 	assert_near(icon.axis[2], -1, 1e-9);
 	/* lines through two points of G's x axis 0.3 apart move G 0.3 along it */
-	r = ray_to(&c, (double[3]){ 0, 1, 0.1 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0, 1, 0.1 });
 	struct xform g1 = m.g;
-	r = ray_to(&c, (double[3]){ 0, 1, -0.2 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0, 1, -0.2 });
 	assert_near(m.g.p[0], g1.p[0], 1e-9);
 	assert_near(m.g.p[1], g1.p[1], 1e-9);
 	assert_near(m.g.p[2], g1.p[2] - 0.3, 1e-9);
@@ -1018,26 +1019,20 @@ test_alt_gives_a_tenth(void **unused)
 {
 	(void)unused;
 	struct xform g;
-	xform_identity(&g);
-	struct camera c = cam_at((double[3]){ 3, 3, 4 }, g.p);
-	const struct manip_def def = manip_default_def();
+	struct camera c;
 	struct manip m;
-	manip_init(&m, &def, &g, &c);
-	struct ray r = ray_to(&c, (double[3]){ 0, 0, 0 });
-	manip_ray(&m, &r);
+	start_at_origin(&m, &g, &c, (double[3]){ 3, 3, 4 });
+	mouse_through(&m, &c, (double[3]){ 0, 0, 0 });
 	button(&m, BTN_LEFT, 1);
-	r = ray_to(&c, (double[3]){ 0.5, 0, 0 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0.5, 0, 0 });
 	assert_near(m.g.p[0], 0.5, 1e-9);
 	assert_int_equal(key(&m, KEY_LEFTALT, 1), 1);
 	assert_near(m.g.p[0], 0.5, 1e-9);
-	r = ray_to(&c, (double[3]){ 1.5, 0, 0 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 1.5, 0, 0 });
 	assert_near(m.g.p[0], 0.6, 1e-9);
 	assert_int_equal(key(&m, KEY_LEFTALT, 0), 1);
 	assert_near(m.g.p[0], 0.6, 1e-9);
-	r = ray_to(&c, (double[3]){ 1.0, 0, 0 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 1.0, 0, 0 });
 	assert_near(m.g.p[0], 0.1, 1e-9);
 	assert_near(m.g.p[1], 0, 1e-12);
 	assert_near(m.g.p[2], 0, 1e-12);
@@ -1063,25 +1058,19 @@ test_increments(void **unused)
 {
 	(void)unused;
 	struct xform g;
-	xform_identity(&g);
-	struct camera c = cam_at((double[3]){ 3, 3, 4 }, g.p);
-	const struct manip_def def = manip_default_def();
+	struct camera c;
 	struct manip m;
-	manip_init(&m, &def, &g, &c);
+	start_at_origin(&m, &g, &c, (double[3]){ 3, 3, 4 });
 	manip_increments(&m, 1);
-	struct ray r = ray_to(&c, (double[3]){ 0, 0, 0 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0, 0, 0 });
 	button(&m, BTN_LEFT, 1);
-	r = ray_to(&c, (double[3]){ 0.123, 0, 0 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0.123, 0, 0 });
 	assert_near(m.g.p[0], 0.12, 1e-12);
-	r = ray_to(&c, (double[3]){ 0.126, 0, 0 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0.126, 0, 0 });
 	assert_near(m.g.p[0], 0.13, 1e-12);
 	/* the floor plane, steps along x and z from where the last line met it */
 	button(&m, BTN_RIGHT, 1);
-	r = ray_to(&c, (double[3]){ 0.126 + 0.123, 0, -0.456 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0.126 + 0.123, 0, -0.456 });
 	assert_near(m.g.p[0], 0.25, 1e-12);
 	assert_near(m.g.p[1], 0, 0);
 	assert_near(m.g.p[2], -0.46, 1e-12);
@@ -1090,15 +1079,14 @@ test_increments(void **unused)
 
 	/* the wheel about y, cranked 47 then 48 degrees: 45 then 50 */
 	const double o[3] = { m.g.p[0], 0, m.g.p[2] };
-	r = ray_to(&c, (double[3]){ o[0], 0, o[2] + 0.5 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ o[0], 0, o[2] + 0.5 });
 	key(&m, KEY_LEFTCTRL, 1);
 	button(&m, BTN_MIDDLE, 1);
 	for (int deg = 47; deg <= 48; deg++) {
 		for (int s = 1; s <= 10; s++) {
 			double th = deg * DEG * s / 10;
-			r = ray_to(&c, (double[3]){ o[0] + 0.5 * sin(th), 0, o[2] + 0.5 * cos(th) });
-			manip_ray(&m, &r);
+			mouse_through(&m, &c,
+				      (double[3]){ o[0] + 0.5 * sin(th), 0, o[2] + 0.5 * cos(th) });
 		}
 		double want[9];
 		mathx_rot_y((deg == 47 ? 45 : 50) * DEG, want);
@@ -1107,11 +1095,10 @@ test_increments(void **unused)
 		assert_near(m.g.p[0], o[0], 0);
 		assert_near(m.g.p[2], o[2], 0);
 		/* back to the first spoke for the next round */
-		r = ray_to(&c, (double[3]){ o[0], 0, o[2] + 0.5 });
 		for (int s = 9; s >= 0; s--) {
 			double th = deg * DEG * s / 10;
-			r = ray_to(&c, (double[3]){ o[0] + 0.5 * sin(th), 0, o[2] + 0.5 * cos(th) });
-			manip_ray(&m, &r);
+			mouse_through(&m, &c,
+				      (double[3]){ o[0] + 0.5 * sin(th), 0, o[2] + 0.5 * cos(th) });
 		}
 		assert_near(m.g.r[0], 1, 1e-12);
 	}
@@ -1120,8 +1107,7 @@ test_increments(void **unused)
 	manip_increments(&m, 0);
 	assert_xform_same(&m.g, &before);
 	double th = 47 * DEG;
-	r = ray_to(&c, (double[3]){ o[0] + 0.5 * sin(th), 0, o[2] + 0.5 * cos(th) });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ o[0] + 0.5 * sin(th), 0, o[2] + 0.5 * cos(th) });
 	double want[9];
 	mathx_rot_y(th, want);
 	for (int i = 0; i < 9; i++)
@@ -1134,28 +1120,22 @@ test_set_mid_drag(void **unused)
 {
 	(void)unused;
 	struct xform g;
-	xform_identity(&g);
-	struct camera c = cam_at((double[3]){ 3, 3, 4 }, g.p);
-	const struct manip_def def = manip_default_def();
+	struct camera c;
 	struct manip m;
-	manip_init(&m, &def, &g, &c);
-	struct ray r = ray_to(&c, (double[3]){ 0, 0, 0 });
-	manip_ray(&m, &r);
+	start_at_origin(&m, &g, &c, (double[3]){ 3, 3, 4 });
+	mouse_through(&m, &c, (double[3]){ 0, 0, 0 });
 	key(&m, KEY_LEFTSHIFT, 1);
 	button(&m, BTN_LEFT, 1);
 	button(&m, BTN_RIGHT, 1); /* G's own xz plane */
-	r = ray_to(&c, (double[3]){ 0.2, 0, 0.1 });
-	manip_ray(&m, &r);
+	mouse_through(&m, &c, (double[3]){ 0.2, 0, 0.1 });
 	/* snapped: half a turn about x, moved up; G's xz plane is the floor again, at 0.5 */
 	struct xform snap;
 	xform_elementary(0, 0, 1, M_PI, &snap);
 	snap.p[1] = 0.5;
 	manip_set(&m, &snap);
 	assert_xform_same(&m.g, &snap);
-	r = ray_to(&c, (double[3]){ 0.1, 0.5, 0.1 });
-	assert_int_equal(manip_ray(&m, &r), 0);
-	r = ray_to(&c, (double[3]){ 0.4, 0.5, -0.3 });
-	manip_ray(&m, &r);
+	assert_int_equal(mouse_through(&m, &c, (double[3]){ 0.1, 0.5, 0.1 }), 0);
+	mouse_through(&m, &c, (double[3]){ 0.4, 0.5, -0.3 });
 	assert_near(m.g.p[0], 0.3, 1e-9);
 	assert_near(m.g.p[1], 0.5, 1e-9);
 	assert_near(m.g.p[2], -0.4, 1e-9);

@@ -100,6 +100,15 @@ place(double ax, double ay, double az, double angle, double px, double py, doubl
 	return x;
 }
 
+/* the shapes' common stand: site "a" at the frame's origin, "b" 0.3 m up, the frame at (0, 1, 0) */
+static void
+one_make_upright(struct one *o, const struct geom_def *g)
+{
+	double sa[3] = { 0, 0, 0 }, sb[3] = { 0, 0.3, 0 };
+	struct xform root = place(0, 1, 0, 0, 0, 1, 0);
+	one_make(o, g, sa, sb, &root);
+}
+
 static void
 assert_vec_near(const double a[3], double x, double y, double z, double tol)
 {
@@ -244,10 +253,8 @@ test_sphere(void **unused)
 	(void)unused;
 	/* a ball of radius 0.3 at (0, 1, 0); its mesh has vertices on the sphere, faces inside */
 	struct geom_def g = geom(GEOM_ELLIPSOID, 0.3, 0.3, 0.3);
-	double sa[3] = { 0, 0, 0 }, sb[3] = { 0, 0.3, 0 };
-	struct xform root = place(0, 1, 0, 0, 0, 1, 0);
 	struct one o;
-	one_make(&o, &g, sa, sb, &root);
+	one_make_upright(&o, &g);
 	struct pick_hit h;
 
 	/* through the centre: the equator's vertex at +z */
@@ -279,10 +286,8 @@ test_capsule(void **unused)
 	(void)unused;
 	/* radius 0.1, straight part 0.4 along y, centred at (0, 1, 0): poles at y = 1.3 and 0.7 */
 	struct geom_def g = geom(GEOM_CAPSULE, 0.1, 0.4, 0);
-	double sa[3] = { 0, 0, 0 }, sb[3] = { 0, 0.3, 0 };
-	struct xform root = place(0, 1, 0, 0, 0, 1, 0);
 	struct one o;
-	one_make(&o, &g, sa, sb, &root);
+	one_make_upright(&o, &g);
 	struct pick_hit h;
 
 	struct ray r = ray_of(0, 6, 0, 0, -1, 0);

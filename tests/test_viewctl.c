@@ -22,29 +22,10 @@
 #include "interact/viewctl.h"
 #include "interact/viewop.h"
 
+#include "test_random.h"
 #include "test_util.h"
 
 #define DEG (M_PI / 180)
-
-/* ---- a seeded generator (splitmix64) ------------------------------------------ */
-
-static uint64_t rng_state;
-
-static double
-rnd(void)
-{
-	uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-	z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-	z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-	z ^= z >> 31;
-	return (double)(z >> 11) / 9007199254740992.0;
-}
-
-static double
-uniform(double lo, double hi)
-{
-	return lo + (hi - lo) * rnd();
-}
 
 /* ---- the dissertation's matrices: row vectors, position in the bottom row ------ */
 
@@ -145,8 +126,8 @@ random_camera(double elev_max)
 {
 	struct camera c;
 	view_camera_default(&c);
-	double eye[3] = { uniform(-5, 5), uniform(0.2, 3), uniform(-5, 5) };
-	double yaw = uniform(-M_PI, M_PI), pitch = uniform(-elev_max, elev_max), d = uniform(0.5, 6);
+	double eye[3] = { span(-5, 5), span(0.2, 3), span(-5, 5) };
+	double yaw = span(-M_PI, M_PI), pitch = span(-elev_max, elev_max), d = span(0.5, 6);
 	double target[3] = { eye[0] + d * cos(pitch) * sin(yaw), eye[1] + d * sin(pitch),
 			     eye[2] + d * cos(pitch) * cos(yaw) };
 	assert_int_equal(view_camera_aim(&c, eye, target), 0);
@@ -155,37 +136,48 @@ random_camera(double elev_max)
 
 /* ---- the equations of C.2 ----------------------------------------------------- */
 
-/* C.2.1.2: C' = T D R with T = C R^-1, R the view reference point aligned with the world */
+/* C' = T D P with T = C P^-1: the camera turned by theta about d_axis through the pivot */
+static void
+turn_about_pivot_by_equation(const struct camera *c, const double pivot[3], const double d_axis[3],
+			     double theta, m4 dest)
+{
+	double minus_pivot[3];
+	for (int i = 0; i < 3; i++)
+		minus_pivot[i] = -pivot[i];
+	m4 C, P, P_inv, T, D, TD;
+	m4_of_camera(c, C);
+	m4_translation(pivot, P);
+	m4_translation(minus_pivot, P_inv);
+	m4_mul(C, P_inv, T);
+	m4_rotation(d_axis, theta, D);
+	m4_mul(T, D, TD);
+	m4_mul(TD, P, dest);
+}
+
+/* C.2.1.2: the pivot R is the view reference point, aligned with the world */
 static void
 sweep_by_equation(const struct camera *c, const double d_axis[3], double theta, m4 dest)
 {
-	double r[3], minus_r[3];
+	double r[3];
 	vrp(c, r);
-	for (int i = 0; i < 3; i++)
-		minus_r[i] = -r[i];
-	m4 C, R, R_inv, T, D, TD;
-	m4_of_camera(c, C);
-	m4_translation(r, R);
-	m4_translation(minus_r, R_inv);
-	m4_mul(C, R_inv, T);
-	m4_rotation(d_axis, theta, D);
-	m4_mul(T, D, TD);
-	m4_mul(TD, R, dest);
+	turn_about_pivot_by_equation(c, r, d_axis, theta, dest);
 }
 
 /* C.2.2.2: the same with the pivot at the camera's own origin */
 static void
 pan_by_equation(const struct camera *c, const double d_axis[3], double theta, m4 dest)
 {
-	double minus_p[3] = { -c->xf.p[0], -c->xf.p[1], -c->xf.p[2] };
-	m4 C, P, P_inv, T, D, TD;
+	turn_about_pivot_by_equation(c, c->xf.p, d_axis, theta, dest);
+}
+
+/* C.2.2.2's other reading: the turn about the camera's own local_axis, applied locally (D C) */
+static void
+pan_locally(const struct camera *c, const double local_axis[3], double theta, m4 dest)
+{
+	m4 C, D;
 	m4_of_camera(c, C);
-	m4_translation(c->xf.p, P);
-	m4_translation(minus_p, P_inv);
-	m4_mul(C, P_inv, T);
-	m4_rotation(d_axis, theta, D);
-	m4_mul(T, D, TD);
-	m4_mul(TD, P, dest);
+	m4_rotation(local_axis, theta, D);
+	m4_mul(D, C, dest);
 }
 
 static const double WORLD_Y[3] = { 0, 1, 0 };
@@ -197,7 +189,7 @@ test_sweep_horizontal_is_TDR_about_the_vertical(void **state)
 	rng_state = 1;
 	for (int n = 0; n < 500; n++) {
 		struct camera c = random_camera(80 * DEG);
-		double theta = uniform(-M_PI, M_PI), r0[3], r1[3];
+		double theta = span(-M_PI, M_PI), r0[3], r1[3];
 		m4 want;
 		sweep_by_equation(&c, WORLD_Y, theta, want);
 		vrp(&c, r0);
@@ -219,7 +211,7 @@ test_sweep_vertical_is_TDR_about_the_camera_x(void **state)
 	rng_state = 2;
 	for (int n = 0; n < 500; n++) {
 		struct camera c = random_camera(60 * DEG);
-		double theta = uniform(-25 * DEG, 25 * DEG), cx[3], r0[3], r1[3];
+		double theta = span(-25 * DEG, 25 * DEG), cx[3], r0[3], r1[3];
 		axis(&c, 0, cx);
 		m4 want;
 		sweep_by_equation(&c, cx, theta, want);
@@ -269,14 +261,12 @@ test_pan_horizontal_is_RD_about_the_vertical(void **state)
 	rng_state = 4;
 	for (int n = 0; n < 500; n++) {
 		struct camera c = random_camera(80 * DEG);
-		double theta = uniform(-M_PI, M_PI), p0[3];
-		m4 want, C, D, local;
+		double theta = span(-M_PI, M_PI), p0[3];
+		m4 want, local;
 		pan_by_equation(&c, WORLD_Y, theta, want);
-		/* C.2.2.2's other reading: R_y mapped to the camera's frame, applied locally (D C) */
+		/* R_y mapped to the camera's frame */
 		double y_local[3] = { c.xf.r[3], c.xf.r[4], c.xf.r[5] };
-		m4_of_camera(&c, C);
-		m4_rotation(y_local, theta, D);
-		m4_mul(D, C, local);
+		pan_locally(&c, y_local, theta, local);
 		memcpy(p0, c.xf.p, sizeof p0);
 		double vrd = c.vrd, elev = elevation(&c);
 		assert_near(viewop_pan_horizontal(&c, theta), theta, 0);
@@ -297,13 +287,11 @@ test_pan_vertical_is_RD_about_the_camera_x(void **state)
 	const double local_x[3] = { 1, 0, 0 };
 	for (int n = 0; n < 500; n++) {
 		struct camera c = random_camera(60 * DEG);
-		double theta = uniform(-25 * DEG, 25 * DEG), cx[3], p0[3];
+		double theta = span(-25 * DEG, 25 * DEG), cx[3], p0[3];
 		axis(&c, 0, cx);
-		m4 want, C, D, local;
+		m4 want, local;
 		pan_by_equation(&c, cx, theta, want);
-		m4_of_camera(&c, C);
-		m4_rotation(local_x, theta, D);
-		m4_mul(D, C, local);
+		pan_locally(&c, local_x, theta, local);
 		memcpy(p0, c.xf.p, sizeof p0);
 		double elev = elevation(&c);
 		assert_near(viewop_pan_vertical(&c, theta), theta, 1e-12);
@@ -323,7 +311,7 @@ test_zoom_moves_along_z_keeping_the_reference_point(void **state)
 	rng_state = 6;
 	for (int n = 0; n < 500; n++) {
 		struct camera c = random_camera(80 * DEG);
-		double theta = uniform(-0.9 * c.vrd, 3), want[3], r0[3], r1[3], z[3];
+		double theta = span(-0.9 * c.vrd, 3), want[3], r0[3], r1[3], z[3];
 		axis(&c, 2, z);
 		for (int i = 0; i < 3; i++)
 			want[i] = c.xf.p[i] + theta * z[i];
@@ -621,8 +609,8 @@ random_target(const struct camera *c, double dest[3])
 {
 	double s[3];
 	sight(c, s);
-	double yaw = atan2(s[0], s[2]) + (rnd() < 0.5 ? -1 : 1) * uniform(30 * DEG, 170 * DEG);
-	double pitch = uniform(-60 * DEG, 60 * DEG), d = uniform(0.5, 8);
+	double yaw = atan2(s[0], s[2]) + (urand() < 0.5 ? -1 : 1) * span(30 * DEG, 170 * DEG);
+	double pitch = span(-60 * DEG, 60 * DEG), d = span(0.5, 8);
 	dest[0] = c->xf.p[0] + d * cos(pitch) * sin(yaw);
 	dest[1] = c->xf.p[1] + d * sin(pitch);
 	dest[2] = c->xf.p[2] + d * cos(pitch) * cos(yaw);
@@ -880,18 +868,18 @@ test_ten_thousand_random_operations(void **state)
 	uint64_t t = 0;
 	enter(&vc, &c, 0);
 	for (int n = 0; n < 10000; n++) {
-		double k = rnd();
+		double k = urand();
 		t += 16667;
 		if (k < 0.45) {
-			motion(&vc, &c, uniform(-300, 300), uniform(-300, 300));
+			motion(&vc, &c, span(-300, 300), span(-300, 300));
 		} else if (k < 0.6) {
-			feed(&vc, &c, INPUT_BUTTON, buttons[(int)(rnd() * 3)], rnd() < 0.5);
+			feed(&vc, &c, INPUT_BUTTON, buttons[(int)(urand() * 3)], urand() < 0.5);
 		} else if (k < 0.65) {
-			feed(&vc, &c, INPUT_KEY, KEY_LEFTCTRL, rnd() < 0.5);
+			feed(&vc, &c, INPUT_KEY, KEY_LEFTCTRL, urand() < 0.5);
 		} else if (k < 0.85) {
 			/* the operations themselves, with any angle */
-			double a = uniform(-10, 10);
-			switch ((int)(rnd() * 5)) {
+			double a = span(-10, 10);
+			switch ((int)(urand() * 5)) {
 			case 0: viewop_sweep_horizontal(&c, a); break;
 			case 1: viewop_sweep_vertical(&c, a); break;
 			case 2: viewop_pan_horizontal(&c, a); break;
@@ -901,21 +889,21 @@ test_ten_thousand_random_operations(void **state)
 		} else if (k < 0.95) {
 			/* a snap somewhere, run for a few frames or to the end */
 			if (vc.state == VIEWCTL_VIEWING) {
-				double target[3] = { uniform(-10, 10), uniform(-2, 4), uniform(-10, 10) };
+				double target[3] = { span(-10, 10), span(-2, 4), span(-10, 10) };
 				feed(&vc, &c, INPUT_KEY, KEY_S, 1);
 				feed(&vc, &c, INPUT_BUTTON, BTN_LEFT, 1);
 				feed(&vc, &c, INPUT_BUTTON, BTN_LEFT, 0);
 				viewctl_snap_to(&vc, &c, target, t);
 			}
-			int frames = (int)(rnd() * 80);
+			int frames = (int)(urand() * 80);
 			for (int i = 0; i < frames; i++) {
-				t += (uint64_t)uniform(1000, 200000);
+				t += (uint64_t)span(1000, 200000);
 				viewctl_frame(&vc, &c, t);
 				assert_upright_no_twist(&c);
 			}
 		} else {
 			unsigned keys[3] = { KEY_ESC, KEY_C, KEY_S };
-			feed(&vc, &c, INPUT_KEY, keys[(int)(rnd() * 3)], 1);
+			feed(&vc, &c, INPUT_KEY, keys[(int)(urand() * 3)], 1);
 			if (vc.state == VIEWCTL_IDLE)
 				enter(&vc, &c, 0);
 		}

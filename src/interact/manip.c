@@ -142,6 +142,15 @@ same_selection(const struct manip_selection *a, const struct manip_selection *b)
 	return a->mode == b->mode && a->frame == b->frame && a->axis == b->axis;
 }
 
+/* the motion counts from G as it is now: no reference line yet, no turn */
+static void
+restart_motion(struct manip *m)
+{
+	m->g0 = m->g;
+	m->anchored = 0;
+	m->angle = 0;
+}
+
 /*
  * Takes G and the axis as they are now and says whether section 3.7
  * refuses the selection: an axis near the line of sight for translation,
@@ -152,9 +161,7 @@ same_selection(const struct manip_selection *a, const struct manip_selection *b)
 static int
 anchor_and_check(struct manip *m)
 {
-	m->g0 = m->g;
-	m->anchored = 0;
-	m->angle = 0;
+	restart_motion(m);
 	selection_axes(m);
 	double sight[3];
 	line_of_sight(m, sight);
@@ -317,6 +324,19 @@ follow(struct manip *m)
 }
 
 /*
+ * The 20 degree rule said no to the current selection: remember it, so
+ * that asking again for the same thing counts as a repeat.
+ */
+static enum manip_state
+refuse(struct manip *m, int repeat)
+{
+	m->refusal.repeat = repeat;
+	m->last_refused = m->sel;
+	m->have_last_refused = 1;
+	return MANIP_REFUSED;
+}
+
+/*
  * The chord changed: make its selection, check it, and anchor on the
  * mouse line the caller gave last (so the icons have their spokes before
  * any motion). A refusal of the selection refused just before is a
@@ -333,13 +353,9 @@ choose(struct manip *m)
 	m->anchored = 0;
 	if (m->sel.mode == MANIP_MODE_IDLE || m->sel.mode == MANIP_MODE_NONE)
 		return state_of_mode(m->sel.mode);
-	if (anchor_and_check(m)) {
-		m->refusal.repeat =
-			m->have_last_refused && same_selection(&m->last_refused, &m->sel);
-		m->last_refused = m->sel;
-		m->have_last_refused = 1;
-		return MANIP_REFUSED;
-	}
+	if (anchor_and_check(m))
+		return refuse(m, m->have_last_refused &&
+					 same_selection(&m->last_refused, &m->sel));
 	m->have_last_refused = 0;
 	follow(m);
 	return state_of_mode(m->sel.mode);
@@ -349,9 +365,7 @@ choose(struct manip *m)
 static void
 reanchor(struct manip *m)
 {
-	m->g0 = m->g;
-	m->anchored = 0;
-	m->angle = 0;
+	restart_motion(m);
 	follow(m);
 }
 
@@ -366,123 +380,54 @@ recheck(struct manip *m, enum manip_state now)
 	int repeat = m->refusal.repeat;
 	m->refusal.active = 0;
 	m->refusal.repeat = 0;
-	if (anchor_and_check(m)) {
-		/* still refused: the user has chosen nothing new */
-		m->refusal.repeat = was_refused && repeat;
-		m->last_refused = m->sel;
-		m->have_last_refused = 1;
-		return MANIP_REFUSED;
-	}
+	/* still refused: the user has chosen nothing new */
+	if (anchor_and_check(m))
+		return refuse(m, was_refused && repeat);
 	m->have_last_refused = 0;
 	return state_of_mode(m->sel.mode);
 }
 
-/* no button: nothing follows the mouse */
-static enum manip_state
-idle_handle(struct manip *m, enum manip_input in)
+/* one of the three states in which the mouse line moves G */
+static int
+is_acting(enum manip_state state)
 {
-	switch (in) {
-	case IN_CHORD:
-		return choose(m);
-	case IN_RAY:
-	case IN_CAMERA:
-	case IN_SCALE:
-		break;
-	}
-	return MANIP_IDLE;
+	return state == MANIP_LINEAR || state == MANIP_PLANAR || state == MANIP_ROTATE;
 }
 
-/* three buttons, or CONTROL with more than one: no effect until the chord changes */
+/*
+ * One step of the machine from state now. A new chord always chooses
+ * afresh. Idle and none (no button; three buttons, or CONTROL with more
+ * than one) wait for it. Refused waits too, but a new view may change the
+ * 20 degree rule's answer, so it checks again. The acting states follow
+ * the mouse line, check again on a new view and re-anchor on a new scale.
+ */
 static enum manip_state
-none_handle(struct manip *m, enum manip_input in)
+next_state(struct manip *m, enum manip_input in, enum manip_state now)
 {
+	int acting = is_acting(now);
 	switch (in) {
 	case IN_CHORD:
 		return choose(m);
 	case IN_RAY:
-	case IN_CAMERA:
-	case IN_SCALE:
-		break;
-	}
-	return MANIP_NONE;
-}
-
-/* the 20 degree rule said no: G stays until the chord or the view changes */
-static enum manip_state
-refused_handle(struct manip *m, enum manip_input in)
-{
-	switch (in) {
-	case IN_CHORD:
-		return choose(m);
-	case IN_RAY:
-	case IN_SCALE:
+		if (acting)
+			follow(m);
 		break;
 	case IN_CAMERA:
-		return recheck(m, MANIP_REFUSED);
-	}
-	return MANIP_REFUSED;
-}
-
-/* one of the three acting states: the mouse line moves G */
-static enum manip_state
-acting_handle(struct manip *m, enum manip_input in, enum manip_state self)
-{
-	switch (in) {
-	case IN_CHORD:
-		return choose(m);
-	case IN_RAY:
-		follow(m);
-		return self;
-	case IN_CAMERA:
-		return recheck(m, self);
+		if (acting || now == MANIP_REFUSED)
+			return recheck(m, now);
+		break;
 	case IN_SCALE:
-		reanchor(m);
-		return self;
+		if (acting)
+			reanchor(m);
+		break;
 	}
-	return self;
-}
-
-static enum manip_state
-linear_handle(struct manip *m, enum manip_input in)
-{
-	return acting_handle(m, in, MANIP_LINEAR);
-}
-
-static enum manip_state
-planar_handle(struct manip *m, enum manip_input in)
-{
-	return acting_handle(m, in, MANIP_PLANAR);
-}
-
-static enum manip_state
-rotate_handle(struct manip *m, enum manip_input in)
-{
-	return acting_handle(m, in, MANIP_ROTATE);
+	return now;
 }
 
 static void
 dispatch(struct manip *m, enum manip_input in)
 {
-	switch (m->state) {
-	case MANIP_IDLE:
-		m->state = idle_handle(m, in);
-		break;
-	case MANIP_NONE:
-		m->state = none_handle(m, in);
-		break;
-	case MANIP_REFUSED:
-		m->state = refused_handle(m, in);
-		break;
-	case MANIP_LINEAR:
-		m->state = linear_handle(m, in);
-		break;
-	case MANIP_PLANAR:
-		m->state = planar_handle(m, in);
-		break;
-	case MANIP_ROTATE:
-		m->state = rotate_handle(m, in);
-		break;
-	}
+	m->state = next_state(m, in, m->state);
 }
 
 /* ---- the inputs -------------------------------------------------------------- */
@@ -522,17 +467,14 @@ manip_event(struct manip *m, const struct input_event_rec *ev)
 		}
 	} else {
 		switch (ev->code) {
+		/* one bit a side, so that releasing one keeps the other held */
 		case KEY_LEFTSHIFT:
-			changed = set_bit(&m->shift, 1, down);
-			break;
 		case KEY_RIGHTSHIFT:
-			changed = set_bit(&m->shift, 2, down);
+			changed = set_bit(&m->shift, ev->code == KEY_LEFTSHIFT ? 1 : 2, down);
 			break;
 		case KEY_LEFTCTRL:
-			changed = set_bit(&m->ctrl, 1, down);
-			break;
 		case KEY_RIGHTCTRL:
-			changed = set_bit(&m->ctrl, 2, down);
+			changed = set_bit(&m->ctrl, ev->code == KEY_LEFTCTRL ? 1 : 2, down);
 			break;
 		case KEY_LEFTALT:
 		case KEY_RIGHTALT:

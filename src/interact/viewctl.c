@@ -163,21 +163,19 @@ handle_idle(struct viewctl *vc, struct camera *cam, int caller_mode,
 	return VIEWCTL_ENTERED;
 }
 
+/*
+ * What the viewer does with an event it has no use for: a device coming or
+ * going is the caller's business, anything else is swallowed so that it
+ * does not act on the figure while the view is being changed.
+ */
 static enum viewctl_result
-handle_viewing(struct viewctl *vc, struct camera *cam, const struct input_event_rec *ev)
+swallowed_unless_device(const struct input_event_rec *ev)
 {
-	enum viewctl_result r;
 	switch ((enum input_kind)ev->kind) {
 	case INPUT_MOTION:
-		return move(vc, cam, ev->x, ev->y);
-	case INPUT_KEY:
-		if (common_key(vc, cam, ev, &r))
-			return r;
-		if (is_press(ev, KEY_S))
-			vc->state = VIEWCTL_SNAP_PICK;
-		return VIEWCTL_TAKEN;
 	case INPUT_POINTER:
 	case INPUT_BUTTON:
+	case INPUT_KEY:
 	case INPUT_WHEEL:
 	case INPUT_VALUATOR:
 	case INPUT_FRAME:
@@ -187,59 +185,51 @@ handle_viewing(struct viewctl *vc, struct camera *cam, const struct input_event_
 		return VIEWCTL_PASS;
 	}
 	return VIEWCTL_PASS;
+}
+
+static enum viewctl_result
+handle_viewing(struct viewctl *vc, struct camera *cam, const struct input_event_rec *ev)
+{
+	enum viewctl_result r;
+	if (ev->kind == INPUT_MOTION)
+		return move(vc, cam, ev->x, ev->y);
+	if (ev->kind != INPUT_KEY)
+		return swallowed_unless_device(ev);
+	if (common_key(vc, cam, ev, &r))
+		return r;
+	if (is_press(ev, KEY_S))
+		vc->state = VIEWCTL_SNAP_PICK;
+	return VIEWCTL_TAKEN;
 }
 
 static enum viewctl_result
 handle_snap_pick(struct viewctl *vc, struct camera *cam, const struct input_event_rec *ev)
 {
 	enum viewctl_result r;
-	switch ((enum input_kind)ev->kind) {
-	case INPUT_BUTTON:
+	if (ev->kind == INPUT_BUTTON)
 		return ev->code == BTN_LEFT && ev->value == 1 ? VIEWCTL_PICK : VIEWCTL_TAKEN;
-	case INPUT_KEY:
-		if (common_key(vc, cam, ev, &r))
-			return r;
-		return VIEWCTL_TAKEN;
-	case INPUT_MOTION:
-	case INPUT_POINTER:
-	case INPUT_WHEEL:
-	case INPUT_VALUATOR:
-	case INPUT_FRAME:
-		return VIEWCTL_TAKEN;
-	case INPUT_ADDED:
-	case INPUT_REMOVED:
-		return VIEWCTL_PASS;
-	}
-	return VIEWCTL_PASS;
+	if (ev->kind != INPUT_KEY)
+		return swallowed_unless_device(ev);
+	if (common_key(vc, cam, ev, &r))
+		return r;
+	return VIEWCTL_TAKEN;
 }
 
 static enum viewctl_result
 handle_snapping(struct viewctl *vc, struct camera *cam, const struct input_event_rec *ev)
 {
 	enum viewctl_result r;
-	switch ((enum input_kind)ev->kind) {
-	case INPUT_KEY:
-		if (common_key(vc, cam, ev, &r))
-			return r;
-		if (is_press(ev, KEY_S)) {
-			/* another snap: this one ends at once where it was going */
-			viewop_snap_at(&vc->snap, 1, cam);
-			vc->state = VIEWCTL_SNAP_PICK;
-			return VIEWCTL_CHANGED;
-		}
-		return VIEWCTL_TAKEN;
-	case INPUT_MOTION:
-	case INPUT_POINTER:
-	case INPUT_BUTTON:
-	case INPUT_WHEEL:
-	case INPUT_VALUATOR:
-	case INPUT_FRAME:
-		return VIEWCTL_TAKEN;
-	case INPUT_ADDED:
-	case INPUT_REMOVED:
-		return VIEWCTL_PASS;
+	if (ev->kind != INPUT_KEY)
+		return swallowed_unless_device(ev);
+	if (common_key(vc, cam, ev, &r))
+		return r;
+	if (is_press(ev, KEY_S)) {
+		/* another snap: this one ends at once where it was going */
+		viewop_snap_at(&vc->snap, 1, cam);
+		vc->state = VIEWCTL_SNAP_PICK;
+		return VIEWCTL_CHANGED;
 	}
-	return VIEWCTL_PASS;
+	return VIEWCTL_TAKEN;
 }
 
 enum viewctl_result
