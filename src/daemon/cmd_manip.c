@@ -291,6 +291,14 @@ cmd_set_manip(struct cmd_ctx *c)
 	struct interact *ia = c->d->interact;
 	if (!ia || ia->mode == INTERACT_NONE || ia->mode == INTERACT_JOINT)
 		return cmd_fail(c, "bad-argument", "a value is typed in a figure, drag or primitive mode");
+	if (words_is_key(c->argv[0], "increments")) { /* motion in steps of 1 cm and 5 degrees */
+		const char *on = cmd_key(c, "increments");
+		if (strcmp(on, "on") && strcmp(on, "off"))
+			return cmd_fail(c, "bad-argument", "increments=on|off");
+		manip_increments(&ia->m, !strcmp(on, "on"));
+		json_object_set_new(c->result, "increments", json_boolean(ia->m.increments));
+		return 0;
+	}
 	enum manip_state st = ia->m.state;
 	if (st != MANIP_LINEAR && st != MANIP_ROTATE)
 		return cmd_fail(c, "bad-argument", "no axis is active: hold a button (CONTROL: a turn)");

@@ -573,3 +573,22 @@ def test_a_typed_value_sets_the_displacement_exactly(daemon):
         want = [[-r0[1][j] for j in range(3)], r0[0], r0[2]]
         assert sum(r, []) == pytest.approx(sum(want, []), abs=1e-12)
         assert c.request_reply("set manip 10cm")["error"]["code"] == "bad-number"
+
+
+def test_increments_move_g_in_whole_centimetres(daemon):
+    """With increments on, a drag along x moves G by whole steps of 1 cm from where it
+    began (the nearest step to the free motion); off again, the motion is free."""
+    with daemon.client() as c:
+        setup(c)
+        c.request("manipulate figure human")
+        assert c.request("set manip increments=on") == {"increments": True}
+        g0 = c.request("get manip")["position"]
+        c.request("input pointer front 160 120")
+        c.request("input button left down")
+        for x in (171, 183, 197):
+            c.request(f"input pointer front {x} 120")
+            dx = c.request("get manip")["position"][0] - g0[0]
+            assert dx == pytest.approx(round(dx * 100) / 100, abs=1e-12) and dx > 0
+        c.request("input button left up")
+        assert c.request("set manip increments=off") == {"increments": False}
+        assert c.request_reply("set manip increments=maybe")["error"]["code"] == "bad-argument"
