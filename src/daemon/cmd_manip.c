@@ -130,7 +130,7 @@ cmd_manipulate_joint(struct cmd_ctx *c)
 static int
 manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 {
-	int sided = kind != INTERACT_COM, fig, v, side = 0;
+	int sided = kind == INTERACT_HAND || kind == INTERACT_FOOT, fig, v, side = 0;
 	if (mode_args(c, sided ? 2 : 1, NULL, &fig, &v) < 0)
 		return -1;
 	struct env *e = &c->d->env;
@@ -149,10 +149,19 @@ manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 		g = f->state->site_xf[b->s_palm[side]];
 	} else if (kind == INTERACT_FOOT) {
 		g = f->state->site_xf[behave_foot_site(b, side)];
-	} else { /* the centre of mass, in the world's axes */
+	} else if (kind == INTERACT_COM) { /* the centre of mass, in the world's axes */
 		kin_com(f->model, f->state);
 		xform_identity(&g);
 		memcpy(g.p, f->state->com, sizeof g.p);
+	} else { /* the point fixated, or 1 m along the head's (an eye's) +z, the aim axis */
+		int eyes = kind == INTERACT_EYES;
+		const struct xform *site = &f->state->site_xf[eyes ? b->s_eye[0] : b->s_head];
+		xform_identity(&g);
+		if (eyes ? b->p.fixate_eyes : b->p.fixate_head)
+			memcpy(g.p, eyes ? b->p.eyes_point : b->p.head_point, sizeof g.p);
+		else
+			for (int k = 0; k < 3; k++)
+				g.p[k] = site->p[k] + site->r[3 * k + 2];
 	}
 	struct camera cam;
 	const struct env_view *vw = mode_camera(c, v, &cam);
@@ -160,7 +169,7 @@ manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 		       vw->height);
 	c->d->interact->primitive = kind;
 	c->d->interact->side = side;
-	static const char *const names[] = { "hand", "foot", "com" };
+	static const char *const names[] = { "hand", "foot", "com", "head", "eyes" };
 	mode_started(c, fig, names[kind], vw);
 	return 0;
 }
@@ -181,6 +190,18 @@ int
 cmd_manipulate_com(struct cmd_ctx *c)
 {
 	return manipulate_primitive(c, INTERACT_COM);
+}
+
+int
+cmd_manipulate_head(struct cmd_ctx *c)
+{
+	return manipulate_primitive(c, INTERACT_HEAD);
+}
+
+int
+cmd_manipulate_eyes(struct cmd_ctx *c)
+{
+	return manipulate_primitive(c, INTERACT_EYES);
 }
 
 /*
@@ -341,7 +362,7 @@ cmd_get_manip(struct cmd_ctx *c)
 {
 	const struct interact *ia = c->d->interact;
 	int on = ia && ia->mode != INTERACT_NONE;
-	static const char *const primitives[] = { "hand", "foot", "com" };
+	static const char *const primitives[] = { "hand", "foot", "com", "head", "eyes" };
 	json_object_set_new(c->result, "mode",
 			    json_string(on && ia->mode == INTERACT_PRIMITIVE
 						? primitives[ia->primitive]

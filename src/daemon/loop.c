@@ -344,6 +344,12 @@ drive_primitive(struct loop *L, struct env_figure *f, const struct interact *ia)
 		behave_move_com(b, f->model, f->state, f->ik, d[0], d[2], d[1]);
 		break;
 	}
+	case INTERACT_HEAD:
+		behave_move_head(b, f->ik, g.p);
+		break;
+	case INTERACT_EYES:
+		behave_move_eyes(b, f->ik, g.p);
+		break;
 	}
 }
 

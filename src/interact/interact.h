@@ -39,6 +39,8 @@ enum interact_primitive {
 	INTERACT_HAND, /* move hand: G is the palm's goal */
 	INTERACT_FOOT, /* move foot: G is the foot's goal */
 	INTERACT_COM,  /* move com: G's motion shifts the balance point, and the height */
+	INTERACT_HEAD, /* move head: G is the point the head fixates */
+	INTERACT_EYES, /* move eyes: G is the point the eyes fixate */
 };
 
 /* what interact_input did */

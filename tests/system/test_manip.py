@@ -592,3 +592,23 @@ def test_increments_move_g_in_whole_centimetres(daemon):
         c.request("input button left up")
         assert c.request("set manip increments=off") == {"increments": False}
         assert c.request_reply("set manip increments=maybe")["error"]["code"] == "bad-argument"
+
+
+@pytest.mark.parametrize("what,site", [("head", "head.between_eyes"), ("eyes", "eyeball_l.gaze")])
+def test_the_head_and_the_eyes_fixate_g(daemon, what, site):
+    """move head / move eyes as modes: G starts a metre along the aim axis (+z) and is the
+    point fixated; dragged aside, the head (or eye) turns until its +z points at G."""
+    with daemon.client() as c:
+        setup(c, eye="0,1.6,3", target="0,1.6,0")
+        c.request("behave human on")
+        c.request("settle frames=30")
+        assert c.request(f"manipulate {what} human")["mode"] == what
+        g = drag_x(c, 0.3)
+        c.request("settle frames=120")
+        s = c.request(f"get site human {site}")
+        r = s["rotation"]  # row-major 3x3: the +z axis is the third column
+        z = [r[2], r[5], r[8]]
+        to_g = sub(g, s["position"])
+        n = math.sqrt(dot(to_g, to_g))
+        angle = math.degrees(math.acos(max(-1, min(1, dot(z, to_g) / n))))
+        assert angle < 2, angle
