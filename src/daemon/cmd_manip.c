@@ -149,6 +149,8 @@ manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 		g = f->state->site_xf[b->s_palm[side]];
 	} else if (kind == INTERACT_FOOT) {
 		g = f->state->site_xf[behave_foot_site(b, side)];
+	} else if (kind == INTERACT_PELVIS) { /* the pelvis's frame: CONTROL and a button turn it */
+		g = f->state->site_xf[b->s_pelvis];
 	} else if (kind == INTERACT_COM) { /* the centre of mass, in the world's axes */
 		kin_com(f->model, f->state);
 		xform_identity(&g);
@@ -169,7 +171,8 @@ manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 		       vw->height);
 	c->d->interact->primitive = kind;
 	c->d->interact->side = side;
-	static const char *const names[] = { "hand", "foot", "com", "head", "eyes" };
+	memcpy(c->d->interact->applied_r, g.r, sizeof g.r);
+	static const char *const names[] = { "hand", "foot", "com", "head", "eyes", "pelvis" };
 	mode_started(c, fig, names[kind], vw);
 	return 0;
 }
@@ -190,6 +193,12 @@ int
 cmd_manipulate_com(struct cmd_ctx *c)
 {
 	return manipulate_primitive(c, INTERACT_COM);
+}
+
+int
+cmd_manipulate_pelvis(struct cmd_ctx *c)
+{
+	return manipulate_primitive(c, INTERACT_PELVIS);
 }
 
 int
@@ -362,7 +371,7 @@ cmd_get_manip(struct cmd_ctx *c)
 {
 	const struct interact *ia = c->d->interact;
 	int on = ia && ia->mode != INTERACT_NONE;
-	static const char *const primitives[] = { "hand", "foot", "com", "head", "eyes" };
+	static const char *const primitives[] = { "hand", "foot", "com", "head", "eyes", "pelvis" };
 	json_object_set_new(c->result, "mode",
 			    json_string(on && ia->mode == INTERACT_PRIMITIVE
 						? primitives[ia->primitive]

@@ -321,7 +321,7 @@ bring_into_view(struct daemon *d, int v, const double p[3])
 
 /* a primitive's goal from G, as its move command sets it (Table 5.2) */
 static void
-drive_primitive(struct loop *L, struct env_figure *f, const struct interact *ia)
+drive_primitive(struct loop *L, struct env_figure *f, struct interact *ia)
 {
 	struct behave *b = f->behave;
 	if (!b)
@@ -347,6 +347,17 @@ drive_primitive(struct loop *L, struct env_figure *f, const struct interact *ia)
 	case INTERACT_HEAD:
 		behave_move_head(b, f->ik, g.p);
 		break;
+	case INTERACT_PELVIS: {
+		/* rotate pelvis turns by increments: G's turn since the last one, in world axes */
+		double inv[9], turn[9];
+		for (int i = 0; i < 3; i++)
+			for (int j = 0; j < 3; j++)
+				inv[3 * i + j] = ia->applied_r[3 * j + i];
+		mathx_mat3_mul(g.r, inv, turn);
+		behave_rotate_pelvis(b, f->model, f->state, f->ik, turn);
+		memcpy(ia->applied_r, g.r, sizeof g.r);
+		break;
+	}
 	case INTERACT_EYES:
 		behave_move_eyes(b, f->ik, g.p);
 		break;

@@ -41,6 +41,7 @@ enum interact_primitive {
 	INTERACT_COM,  /* move com: G's motion shifts the balance point, and the height */
 	INTERACT_HEAD, /* move head: G is the point the head fixates */
 	INTERACT_EYES, /* move eyes: G is the point the eyes fixate */
+	INTERACT_PELVIS, /* rotate pelvis: G's turns turn the pelvis relative to the feet */
 };
 
 /* what interact_input did */
@@ -70,6 +71,7 @@ struct interact {
 	struct joint_manip jm;
 	enum interact_primitive primitive; /* INTERACT_PRIMITIVE: which, and the side */
 	int side;
+	double applied_r[9];  /* INTERACT_PELVIS: G's rotation the pelvis has been turned to */
 	int moved_dof;        /* INTERACT_MOVED in joint mode: this DOF (model index) ... */
 	double moved_value;   /* ... takes this value */
 	char message[INTERACT_MESSAGE_MAX];

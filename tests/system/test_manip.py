@@ -612,3 +612,25 @@ def test_the_head_and_the_eyes_fixate_g(daemon, what, site):
         n = math.sqrt(dot(to_g, to_g))
         angle = math.degrees(math.acos(max(-1, min(1, dot(z, to_g) / n))))
         assert angle < 2, angle
+
+
+def test_turning_the_pelvis_with_the_wheel(daemon):
+    """rotate pelvis as a mode: CONTROL and the middle button turn G about the vertical; the
+    pelvis turns as far relative to the feet (here by a typed 25 degrees)."""
+    with daemon.client() as c:
+        setup(c, eye="0,4,0.5", target="0,0,0")  # from above: the wheel about y faces us
+        c.request("behave human on")
+        c.request("settle frames=30")
+
+        def heading():
+            r = c.request("get site human pelvis.root")["rotation"]
+            return math.degrees(math.atan2(r[6], r[0]))  # the x axis (column 0) about y
+        h0 = heading()
+        assert c.request("manipulate pelvis human")["mode"] == "pelvis"
+        c.request("input key KEY_LEFTCTRL down")
+        c.request("input button middle down")
+        assert c.request("get manip")["state"] == "rotate"
+        c.request("set manip 25deg")
+        c.request("settle frames=120")
+        turned = h0 - heading()  # +25 about y turns x towards -z: atan2(r6, r0) falls
+        assert turned == pytest.approx(25, abs=3)
