@@ -123,6 +123,29 @@ test_a_translation_slides_by_the_nearest_point(void **unused)
 	assert_int_equal(joint_manip_ray(&j, &dv, &along, &v), 0);
 }
 
+static void
+test_a_typed_value_counts_from_where_the_dof_was_selected(void **unused)
+{
+	(void)unused;
+	struct joint_manip j;
+	joint_manip_init(&j, 1);
+	struct joint_dof_view dv = { .rotation = 1, .axis = { 0, 0, 1 }, .lo = -1, .hi = 1,
+				     .value = 0.2 };
+	double v;
+	assert_int_equal(joint_manip_type(&j, &dv, 0.1, &v), 0); /* nothing selected */
+	struct input_event_rec e = ev(INPUT_BUTTON, BTN_LEFT, 1);
+	joint_manip_event(&j, &e);
+	assert_int_equal(joint_manip_type(&j, &dv, 0.3, &v), 1);
+	assert_near(v, 0.5, 1e-15);
+	/* after motion, still from the value at selection (the anchor), and clamped */
+	struct ray r = down_at(0.0, 1);
+	joint_manip_ray(&j, &dv, &r, &v);
+	r = down_at(0.2, 1);
+	joint_manip_ray(&j, &dv, &r, &v);
+	assert_int_equal(joint_manip_type(&j, &dv, 5, &v), 1);
+	assert_near(v, 1, 0);
+}
+
 int
 main(void)
 {
@@ -130,6 +153,7 @@ main(void)
 		cmocka_unit_test(test_the_chord_selects_the_dof),
 		cmocka_unit_test(test_a_rotation_turns_by_the_spoke_angle_within_limits),
 		cmocka_unit_test(test_a_translation_slides_by_the_nearest_point),
+		cmocka_unit_test(test_a_typed_value_counts_from_where_the_dof_was_selected),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

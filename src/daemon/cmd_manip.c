@@ -319,8 +319,21 @@ int
 cmd_set_manip(struct cmd_ctx *c)
 {
 	struct interact *ia = c->d->interact;
-	if (!ia || ia->mode == INTERACT_NONE || ia->mode == INTERACT_JOINT)
-		return cmd_fail(c, "bad-argument", "a value is typed in a figure, drag or primitive mode");
+	if (!ia || ia->mode == INTERACT_NONE)
+		return cmd_fail(c, "bad-argument", "a value is typed in a mode");
+	if (ia->mode == INTERACT_JOINT) { /* the selected DOF's displacement, in its own sense */
+		int rot = interact_joint_rotation(ia);
+		double typed;
+		if (rot < 0)
+			return cmd_fail(c, "bad-argument", "no DOF is selected: hold a button");
+		if (words_number(c->argv[0], rot ? UNIT_ANGLE : UNIT_LENGTH, &typed) < 0)
+			return cmd_fail(c, "bad-number", "%s", rot ? "an angle (-30deg)" : "a length (2cm)");
+		interact_joint_type(ia, typed);
+		if (c->d->mode_moved)
+			c->d->mode_moved(c->d);
+		json_object_set_new(c->result, "value", json_real(ia->moved_value));
+		return 0;
+	}
 	if (words_is_key(c->argv[0], "increments")) { /* motion in steps of 1 cm and 5 degrees */
 		const char *on = cmd_key(c, "increments");
 		if (strcmp(on, "on") && strcmp(on, "off"))

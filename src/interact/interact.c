@@ -58,6 +58,31 @@ interact_joint_ray(struct interact *ia, const struct ray *r)
 	return 1;
 }
 
+int
+interact_joint_type(struct interact *ia, double typed)
+{
+	if (ia->mode != INTERACT_JOINT || ia->jm.dof < 0)
+		return 0;
+	int dof = ia->model->jnt_dof0[ia->joint] + ia->jm.dof;
+	struct joint_dof_view dv;
+	interact_dof_view(ia->model, ia->state, dof, &dv);
+	double dir = ia->state->jnt_dir[ia->joint], v;
+	/* typed in the DOF's own sense: the mouse's value is dir * q */
+	if (!joint_manip_type(&ia->jm, &dv, dir * typed, &v))
+		return 0;
+	ia->moved_dof = dof;
+	ia->moved_value = dir * v;
+	return 1;
+}
+
+int
+interact_joint_rotation(const struct interact *ia)
+{
+	if (ia->mode != INTERACT_JOINT || ia->jm.dof < 0)
+		return -1;
+	return ia->model->dof_kind[ia->model->jnt_dof0[ia->joint] + ia->jm.dof] == DOF_ROTATION;
+}
+
 /* a new mouse line from the pointer; 1 when G (or the joint) moved */
 static int
 interact_pointer_moved(struct interact *ia)

@@ -120,6 +120,17 @@ void interact_reset_orientation(struct interact *ia, const struct xform *effecto
 void interact_start_joint(struct interact *ia, int fig, int view, const struct model *m,
 			  const struct state *s, int joint, const struct camera *cam, int w, int h);
 
+/*
+ * Joint mode: a value typed for the selected DOF (its displacement from
+ * where it was selected, in the DOF's own sense). Returns 1 with
+ * moved_dof and moved_value set (apply them as for INTERACT_MOVED), 0
+ * when no DOF is selected.
+ */
+int interact_joint_type(struct interact *ia, double typed);
+
+/* 1 when the joint mode's selected DOF is a rotation, 0 a translation, -1 none selected */
+int interact_joint_rotation(const struct interact *ia);
+
 /* DOF dof of a figure as the mouse sees it now (kin_update done); see joint_manip.h */
 void interact_dof_view(const struct model *m, const struct state *s, int dof,
 		       struct joint_dof_view *dest);

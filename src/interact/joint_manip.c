@@ -124,3 +124,15 @@ joint_manip_ray(struct joint_manip *j, const struct joint_dof_view *dv, const st
 	*value = joint_manip_clamp(j->value0 + j->angle, dv->lo, dv->hi);
 	return 1;
 }
+
+int
+joint_manip_type(struct joint_manip *j, const struct joint_dof_view *dv, double typed,
+		 double *value)
+{
+	if (j->dof < 0)
+		return 0;
+	double base = j->anchored ? j->value0 : dv->value;
+	*value = joint_manip_clamp(base + typed, dv->lo, dv->hi);
+	j->anchored = 0; /* the next mouse line anchors at the typed value */
+	return 1;
+}

@@ -62,4 +62,12 @@ int joint_manip_event(struct joint_manip *j, const struct input_event_rec *e);
 int joint_manip_ray(struct joint_manip *j, const struct joint_dof_view *dv, const struct ray *r,
 		    double *value);
 
+/*
+ * A value typed for the selected DOF: its value when it was selected (or
+ * now, before any motion) plus typed, clamped, into *value. Returns 1, or
+ * 0 when no DOF is selected. The mouse goes on from the typed value.
+ */
+int joint_manip_type(struct joint_manip *j, const struct joint_dof_view *dv, double typed,
+		     double *value);
+
 #endif

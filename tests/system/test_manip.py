@@ -634,3 +634,25 @@ def test_turning_the_pelvis_with_the_wheel(daemon):
         c.request("settle frames=120")
         turned = h0 - heading()  # +25 about y turns x towards -z: atan2(r6, r0) falls
         assert turned == pytest.approx(25, abs=3)
+
+
+def test_a_typed_value_sets_a_joint_exactly_in_its_own_sense(daemon):
+    with daemon.client() as c:
+        c.request("load human as human")
+        c.request("add view side width=320 height=240 eye=3,1.1,0 target=0,1.1,0")
+        for root in ("pelvis.root", "hand_r.palm"):  # the elbow down, then up the rooting
+            c.request(f"set root human {root}")
+            c.request("set joint human elbow_r 0")
+            c.request("manipulate joint human elbow_r view=side")
+            assert c.request_reply("set manip 10deg")["error"]["code"] == "bad-argument"
+            c.request("input button left down")
+            value = c.request("set manip 30deg")["value"]
+            got = c.request("get joint human elbow_r")["values"][0]
+            assert value == pytest.approx(math.radians(30), abs=1e-12)
+            assert got == pytest.approx(math.radians(30), abs=1e-12)
+            c.request("set manip 200deg")  # clamped at the upper limit, 150 degrees
+            assert c.request("get joint human elbow_r")["values"][0] == pytest.approx(
+                math.radians(150), abs=1e-12)
+            assert c.request_reply("set manip 3cm")["error"]["code"] == "bad-number"
+            c.request("input button left up")
+            c.request("input key KEY_ESC down")
