@@ -22,8 +22,9 @@
 
 #include "draw/view.h"
 
-#define HEMI_N 64                        /* pixels a side */
+#define HEMI_N 96                        /* pixels a side */
 #define HEMI_FOV (120.0 * M_PI / 180)    /* the frustum's full angle, both ways */
+#define HEMI_PITCH (2 * tan(HEMI_FOV / 2) / HEMI_N) /* a pixel at the centre, radians */
 #define HEMI_ZNEAR 0.01                  /* m: nearer geometry is not seen */
 #define HEMI_ZFAR 200.0
 

@@ -31,16 +31,19 @@ angle(const double a[3], const double b[3])
 }
 
 /*
- * 1 when no blocked pixel lies within reach (radians) of u (map frame).
- * Only a window of pixels can: pixels are at least the corner pitch apart
- * (the pitch shrinks towards the corners as cos^2 of the off-axis angle).
+ * 1 when no blocked pixel lies within reach (radians) of u (map frame),
+ * the pixel (cx, cy). Only a window of pixels can: a pixel's angular size
+ * shrinks away from the centre as 1 / (1 + r^2) at most (r: tan of the
+ * angle off the axis), so the window is sized by the pitch found a reach
+ * further out than u.
  */
 static int
 cone_clear(const struct hemi_map *m, const double u[3], int cx, int cy, double reach,
 	   double eye_dist)
 {
-	const double t = tan(HEMI_FOV / 2), pitch_min = 2 * t / HEMI_N / (1 + 2 * t * t);
-	int r = (int)ceil(reach / pitch_min) + 1;
+	double off = acos(-u[2]) + reach, rr = off < M_PI / 2 - 0.01 ? tan(off) : 100;
+	int r = (int)ceil(reach * (1 + rr * rr) / HEMI_PITCH) + 1;
+	double c = cos(reach);
 	for (int y = cy - r; y <= cy + r; y++) {
 		if (y < 0 || y >= HEMI_N)
 			continue;
@@ -49,7 +52,7 @@ cone_clear(const struct hemi_map *m, const double u[3], int cx, int cy, double r
 				continue;
 			double v[3];
 			pixel_dir(x, y, v);
-			if (angle(u, v) < reach)
+			if (u[0] * v[0] + u[1] * v[1] + u[2] * v[2] > c)
 				return 0;
 		}
 	}

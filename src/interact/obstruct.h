@@ -24,7 +24,7 @@
 
 #define OBSTRUCT_CONE (3.0 * M_PI / 180) /* half angle kept clear about the line of sight */
 /* a pixel's half diagonal at the map's centre: how far a blocked pixel reaches past its centre */
-#define OBSTRUCT_PAD (0.71 * (HEMI_FOV / HEMI_N))
+#define OBSTRUCT_PAD (0.71 * HEMI_PITCH)
 
 /*
  * With eye_dist the camera's distance from the origin (m) and cone a half
