@@ -68,6 +68,30 @@ def test_a_wall_between_camera_and_g_is_avoided(daemon_factory):
         assert back["target"] == pytest.approx(before["target"], abs=1e-9)
 
 
+def test_the_turned_camera_is_journaled(daemon_factory):
+    """the end of the turn is journaled as `set camera`, as the other adjustments are"""
+    library = ["--library", str(ROOT / "src" / "figure" / "library")]
+    d = daemon_factory(extra=library)
+    with d.client() as c:
+        c.request("load human as human")
+        c.request("add view front width=320 height=240 eye=0,1,3 target=0,1,0")
+        c.request("load figure lib:box.fig as wall")
+        c.request("set location wall %g %g %g" % WALL_AT)
+        c.request("manipulate figure human")
+        g = c.request("get manip")["position"]
+        t0 = time.monotonic()
+        while time.monotonic() - t0 < 3 and front(c)["target"] != pytest.approx(g, abs=1e-6):
+            time.sleep(0.02)
+        time.sleep(0.2)  # the last in-between journaled
+        turned = front(c)
+        assert turned["eye"] != pytest.approx([0, 1, 3], abs=1e-3)
+    d.kill9()
+    d.start()
+    with d.client() as c:
+        assert front(c)["eye"] == pytest.approx(turned["eye"], abs=1e-9)
+        assert front(c)["target"] == pytest.approx(turned["target"], abs=1e-9)
+
+
 def test_a_clear_view_is_left_alone(daemon_factory):
     library = ["--library", str(ROOT / "src" / "figure" / "library")]
     with daemon_factory(extra=library).client() as c:
