@@ -444,7 +444,7 @@ drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
 	maybe_adjust_view(L, &cam);
 	/* a new drag: is the object still in sight (§3.7.1)? */
 	if ((mode == INTERACT_FIGURE || mode == INTERACT_DRAG) && ia->mode == mode &&
-	    e->kind == INPUT_KEY && e->value == 1 &&
+	    e->kind == INPUT_BUTTON && e->value == 1 &&
 	    (e->code == BTN_LEFT || e->code == BTN_MIDDLE || e->code == BTN_RIGHT))
 		avoid_obstruction(L, ia->view, ia->m.g.p, ia->fig);
 	if (r & INTERACT_ENDED) {

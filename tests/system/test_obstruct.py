@@ -68,6 +68,34 @@ def test_a_wall_between_camera_and_g_is_avoided(daemon_factory):
         assert back["target"] == pytest.approx(before["target"], abs=1e-9)
 
 
+def test_a_new_drag_checks_again(daemon_factory):
+    """a button going down in a mode looks again: a wall put in the way since is avoided"""
+    library = ["--library", str(ROOT / "src" / "figure" / "library")]
+    with daemon_factory(extra=library).client() as c:
+        c.request("load human as human")
+        c.request("add view front width=320 height=240 eye=0,1,3 target=0,1,0")
+        c.request("load figure lib:box.fig as wall")
+        c.request("set location wall 1.5 0.85 1.5")  # off to the side: nothing to avoid
+        c.request("manipulate figure human")
+        time.sleep(0.2)
+        before = front(c)
+        assert before["eye"] == pytest.approx([0, 1, 3], abs=1e-9)
+        c.request("set location wall %g %g %g" % WALL_AT)  # now in the way
+        g = c.request("get manip")["position"]
+        assert hits_box(before["eye"], g, WALL_LO, WALL_HI)
+        c.request("input pointer front 10 10")
+        c.request("input button left down")
+        c.request("input button left up")
+        t0 = time.monotonic()
+        v = front(c)
+        while time.monotonic() - t0 < 3:
+            v = front(c)
+            if v["target"] == pytest.approx(g, abs=1e-6) and v["eye"] != before["eye"]:
+                break
+            time.sleep(0.02)
+        assert not hits_box(v["eye"], g, WALL_LO, WALL_HI)
+
+
 def test_the_turned_camera_is_journaled(daemon_factory):
     """the end of the turn is journaled as `set camera`, as the other adjustments are"""
     library = ["--library", str(ROOT / "src" / "figure" / "library")]
