@@ -323,8 +323,10 @@ avoid_obstruction(struct loop *L, int v, const double p[3], int skip)
 	double d[3] = { cam.xf.p[0] - p[0], cam.xf.p[1] - p[1], cam.xf.p[2] - p[2] }, dir[3];
 	double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 	char err[256];
-	const struct hemi_map *m;
-	if (!(dist > HEMI_ZNEAR) || !(m = scene_hemicube(&L->scene, &L->d, p, d, skip, err, sizeof err)))
+	if (!(dist > HEMI_ZNEAR))
+		return;
+	const struct hemi_map *m = scene_hemicube(&L->scene, &L->d, p, d, skip, err, sizeof err);
+	if (!m)
 		return;
 	if (obstruct_check(m, dist, OBSTRUCT_CONE, dir) == 1 &&
 	    view_adjust_turn_to(&L->adjust[v], &cam, p, dir, real_now(NULL)) > 0) {
