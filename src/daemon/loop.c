@@ -26,6 +26,7 @@
 #include "figure/kin.h"
 #include "interact/interact.h"
 #include "interact/mouse_line.h"
+#include "interact/obstruct.h"
 #include "interact/pick.h"
 #include "interact/view_adjust.h"
 #include "interact/viewctl.h"
@@ -305,6 +306,35 @@ maybe_adjust_view(struct loop *L, const struct camera *cam)
 	}
 }
 
+/*
+ * §3.7.1: the visibility map from p towards view v's camera, figure slot
+ * skip left out (the manipulated figure's own body surrounds its origin:
+ * it would hide every direction); when something nearer than the eye
+ * hides p, the eye turns about p to the nearest clear direction, eased
+ * like the other adjustments, remembered for C, journaled at the end.
+ */
+static void
+avoid_obstruction(struct loop *L, int v, const double p[3], int skip)
+{
+	if (v < 0 || v >= ENV_MAX_VIEWS || !L->d.env.view[v].used || L->adjust[v].active)
+		return;
+	struct camera cam;
+	view_camera_of_view(&L->d.env.view[v], &cam);
+	double d[3] = { cam.xf.p[0] - p[0], cam.xf.p[1] - p[1], cam.xf.p[2] - p[2] }, dir[3];
+	double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+	char err[256];
+	if (!(dist > HEMI_ZNEAR))
+		return;
+	const struct hemi_map *m = scene_hemicube(&L->scene, &L->d, p, d, skip, err, sizeof err);
+	if (!m)
+		return;
+	if (obstruct_check(m, dist, OBSTRUCT_CONE, dir) == 1 &&
+	    view_adjust_turn_to(&L->adjust[v], &cam, p, dir, real_now(NULL)) > 0) {
+		remember_view(L, v, &cam);
+		snprintf(L->d.message, sizeof L->d.message, "adjusting the view");
+	}
+}
+
 static void
 bring_into_view(struct daemon *d, int v, const double p[3])
 {
@@ -317,6 +347,8 @@ bring_into_view(struct daemon *d, int v, const double p[3])
 	if (!view_adjust_visible(&cam, vw->width, vw->height, p) &&
 	    view_adjust_focus(&L->adjust[v], &cam, p, real_now(NULL)) > 0)
 		remember_view(L, v, &cam);
+	else if (L->interact.mode != INTERACT_NONE && L->interact.view == v)
+		avoid_obstruction(L, v, p, L->interact.fig);
 }
 
 /* a primitive's goal from G, as its move command sets it (Table 5.2) */
@@ -429,6 +461,11 @@ drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
 	if (r)
 		L->scene.dirty = 1;
 	maybe_adjust_view(L, &cam);
+	/* a new drag: is the object still in sight (§3.7.1)? */
+	if ((mode == INTERACT_FIGURE || mode == INTERACT_DRAG) && ia->mode == mode &&
+	    e->kind == INPUT_BUTTON && e->value == 1 &&
+	    (e->code == BTN_LEFT || e->code == BTN_MIDDLE || e->code == BTN_RIGHT))
+		avoid_obstruction(L, ia->view, ia->m.g.p, ia->fig);
 	if (r & INTERACT_ENDED) {
 		if (mode == INTERACT_DRAG)
 			end_drag(L);

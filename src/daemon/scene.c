@@ -2,6 +2,7 @@
 #include "daemon/scene.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "draw/sink.h"
@@ -30,7 +31,14 @@ scene_ready(struct scene *sc, char *err, size_t errlen)
 	rd.max_h = VIEW_MAX_H;
 	sc->r = render_make(&rd, err, errlen);
 	sc->dl = sc->r ? view_drawlist_make() : NULL;
-	if (!sc->r || !sc->dl) {
+	sc->hemi = sc->r ? malloc(sizeof *sc->hemi) : NULL;
+	if (!sc->r || !sc->dl || !sc->hemi) {
+		if (sc->r && (!sc->dl || !sc->hemi))
+			snprintf(err, errlen, "out of memory");
+		view_drawlist_free(sc->dl);
+		free(sc->hemi);
+		sc->dl = NULL;
+		sc->hemi = NULL;
 		fprintf(stderr, "postured: no pictures: %s\n", err);
 		render_free(sc->r);
 		sc->r = NULL;
@@ -86,6 +94,47 @@ scene_add_manip(struct drawlist *dl, const struct interact *ia)
 	view_add_pointer(dl, ia->px, ia->py);
 }
 
+/* figure i's meshes into the renderer when it is new to it */
+static void
+figure_meshes(struct scene *sc, const struct env_figure *f, int i)
+{
+	if (sc->mesh_gen[i] == f->gen)
+		return;
+	char err[256];
+	int base = render_add_model(sc->r, f->model, err, sizeof err);
+	if (base < 0)
+		fprintf(stderr, "postured: figure %s drawn without its meshes: %s\n", f->name, err);
+	sc->mesh_base[i] = base < 0 ? 0 : base;
+	sc->mesh_gen[i] = f->gen;
+}
+
+const struct hemi_map *
+scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3], const double dir[3],
+	       int skip, char *err, size_t errlen)
+{
+	struct env *e = &d->env;
+	struct camera cam;
+	if (scene_ready(sc, err, errlen) < 0)
+		return NULL;
+	if (hemi_camera(&cam, origin, dir) < 0) {
+		snprintf(err, errlen, "no direction");
+		return NULL;
+	}
+	view_begin(sc->dl, &cam, HEMI_N, HEMI_N);
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		struct env_figure *f = &e->fig[i];
+		if (!f->gen || i == skip)
+			continue;
+		figure_meshes(sc, f, i);
+		view_add_figure_ids(sc->dl, f->model, f->state, sc->mesh_base[i], i);
+	}
+	if (render_hemicube(sc->r, sc->dl, sc->hemi) < 0) {
+		snprintf(err, errlen, "render_hemicube failed");
+		return NULL;
+	}
+	return sc->hemi;
+}
+
 int
 scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
 	   size_t errlen)
@@ -103,13 +152,7 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 		struct env_figure *f = &e->fig[i];
 		if (!f->gen)
 			continue;
-		if (sc->mesh_gen[i] != f->gen) { /* a figure new to the renderer */
-			int base = render_add_model(sc->r, f->model, err, errlen);
-			if (base < 0)
-				fprintf(stderr, "postured: figure %s drawn without its meshes: %s\n", f->name, err);
-			sc->mesh_base[i] = base < 0 ? 0 : base;
-			sc->mesh_gen[i] = f->gen;
-		}
+		figure_meshes(sc, f, i);
 		view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
 		int dragged = manipulating && ia->mode == INTERACT_DRAG && ia->fig == i;
 		if (!vw->icons && !dragged)
@@ -204,5 +247,6 @@ scene_free(struct scene *sc)
 	sink_close(sc->fb);
 	sink_png_encoder_free(&sc->enc);
 	view_drawlist_free(sc->dl);
+	free(sc->hemi);
 	render_free(sc->r);
 }

@@ -22,6 +22,7 @@ struct scene {
 	struct render *r; /* made when first needed */
 	int failed;       /* OSMesa could not start: no pictures */
 	struct drawlist *dl;
+	struct hemi_map *hemi; /* §3.7.1's visibility map, made with the renderer */
 	int mesh_base[ENV_MAX_FIGURES]; /* each figure's meshes in the renderer */
 	uint32_t mesh_gen[ENV_MAX_FIGURES];
 	const char *frames_dir; /* NULL: no frame files */
@@ -43,6 +44,15 @@ void scene_free(struct scene *sc);
  */
 int scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
 	       size_t errlen);
+
+/*
+ * §3.7.1's visibility map from origin towards dir (the camera) over the
+ * environment's figures, figure slot skip left out (-1: none), into the
+ * scene's own map (valid until the next call). Returns it, or NULL with
+ * err when there is no renderer or no direction.
+ */
+const struct hemi_map *scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3],
+				      const double dir[3], int skip, char *err, size_t errlen);
 
 /*
  * After a frame that changed something: every view drawn, written and sent

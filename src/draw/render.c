@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "draw/font.h"
+#include "draw/hemi.h"
 #include "draw/pack.h"
 #include "draw/render.h"
 #include "draw/render_glsl.h"
@@ -65,6 +66,9 @@ struct render {
 	struct text_vertex *tvert;
 	struct font *font;
 	GLuint font_tex;
+
+	/* the visibility map's own small target, so the last picture in buf stays whole */
+	GLuint hemi_fbo, hemi_color, hemi_depth;
 
 	uint64_t seq;
 	struct render_stats stats;
@@ -246,6 +250,25 @@ render_make(const struct render_def *d, char *err, size_t errlen)
 		glBindFramebuffer(GL_FRAMEBUFFER, 0);
 	}
 
+	/* the visibility map's target (render_hemicube): colour ids and depth, no samples */
+	glGenFramebuffers(1, &r->hemi_fbo);
+	glGenRenderbuffers(1, &r->hemi_color);
+	glGenRenderbuffers(1, &r->hemi_depth);
+	glBindRenderbuffer(GL_RENDERBUFFER, r->hemi_color);
+	glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, HEMI_N, HEMI_N);
+	glBindRenderbuffer(GL_RENDERBUFFER, r->hemi_depth);
+	glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, HEMI_N, HEMI_N);
+	glBindFramebuffer(GL_FRAMEBUFFER, r->hemi_fbo);
+	glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+				  r->hemi_color);
+	glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+				  r->hemi_depth);
+	if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+		snprintf(err, errlen, "no framebuffer for the visibility map");
+		goto fail;
+	}
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+
 	/* the shadow map and its blurred copy: each a texture behind a framebuffer */
 	if (r->shadows && (target_texture(&r->shadow_tex, &r->shadow_fbo) < 0 ||
 			   target_texture(&r->blur_tex, &r->blur_fbo) < 0)) {
@@ -339,6 +362,11 @@ render_free(struct render *r)
 			glDeleteTextures(1, &r->blur_tex);
 		}
 		glDeleteProgram(r->prog_blur);
+		if (r->hemi_fbo) {
+			glDeleteFramebuffers(1, &r->hemi_fbo);
+			glDeleteRenderbuffers(1, &r->hemi_color);
+			glDeleteRenderbuffers(1, &r->hemi_depth);
+		}
 		if (r->fbo) {
 			glDeleteFramebuffers(1, &r->fbo);
 			glDeleteRenderbuffers(1, &r->rb_color);
@@ -745,6 +773,98 @@ render_frame(struct render *r, const struct drawlist *dl, uint64_t t_us, struct 
 	dest->rgba = r->buf;
 	dest->seq = ++r->seq;
 	dest->t_us = t_us;
+	return 0;
+}
+
+/*
+ * The visibility map: the instances in their flat colours (the shader
+ * without lighting, no blending, no dithering, no samples, so a colour
+ * comes back as it went in), depth-tested, back faces culled (a ray from
+ * inside a closed mesh does not see it, as pick.h's rays do not), read back
+ * into the map's own arrays: colours as bytes into id, decoded in place;
+ * window depths into dist, turned into distances along each pixel's ray.
+ */
+int
+render_hemicube(struct render *r, const struct drawlist *dl, struct hemi_map *dest)
+{
+	if (dl->width != HEMI_N || dl->height != HEMI_N)
+		return -1;
+	const int n = HEMI_N;
+	float view[16], proj[16];
+	view_camera_view_matrix(&dl->cam, view);
+	view_camera_proj_matrix(&dl->cam, 1, proj);
+	pack_drawlist(&r->pack, dl, view, r->mesh, r->lod, r->nmesh);
+	upload_packed(r);
+
+	glBindFramebuffer(GL_FRAMEBUFFER, r->hemi_fbo);
+	glViewport(0, 0, n, n);
+	glDisable(GL_SCISSOR_TEST);
+	glDisable(GL_BLEND);
+	glDisable(GL_DITHER);
+	glDisable(GL_MULTISAMPLE);
+	glDisable(GL_LINE_SMOOTH);
+	glClearColor(0, 0, 0, 0);
+	glClearDepth(1);
+	glDepthMask(GL_TRUE);
+	glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+	glMatrixMode(GL_PROJECTION);
+	glLoadMatrixf(proj);
+	glMatrixMode(GL_MODELVIEW);
+	glLoadMatrixf(view);
+	glEnableClientState(GL_VERTEX_ARRAY);
+	glEnableClientState(GL_COLOR_ARRAY);
+	packed_pointers(r);
+	glUseProgram(r->prog_color);
+	glUniform4f(r->color_tint, 1, 1, 1, 1);
+	glEnable(GL_DEPTH_TEST);
+	glDepthFunc(GL_LESS);
+	glEnable(GL_CULL_FACE);
+	glCullFace(GL_BACK);
+	draw_packed(r, PACK_CAST, PACK_CLEAR);
+	glDisable(GL_CULL_FACE);
+	glDisableClientState(GL_COLOR_ARRAY);
+	glDisableClientState(GL_VERTEX_ARRAY);
+	glBindBuffer(GL_ARRAY_BUFFER, 0);
+	glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+	glUseProgram(0);
+	glPixelStorei(GL_PACK_ALIGNMENT, 4);
+	glReadPixels(0, 0, n, n, GL_RGBA, GL_UNSIGNED_BYTE, dest->id);
+	glReadPixels(0, 0, n, n, GL_DEPTH_COMPONENT, GL_FLOAT, dest->dist);
+	glBindFramebuffer(GL_FRAMEBUFFER, 0);
+	glEnable(GL_DITHER);
+
+	/* GL's rows run bottom to top: swap them while decoding (row y with row n-1-y) */
+	const double zn = dl->cam.znear, zf = dl->cam.zfar, t = tan(dl->cam.fovy / 2);
+	for (int y = 0; y < (n + 1) / 2; y++) {
+		int y2 = n - 1 - y;
+		for (int x = 0; x < n; x++) {
+			int a = y * n + x, b = y2 * n + x;
+			uint32_t ia = dest->id[a], ib = dest->id[b];
+			float da = dest->dist[a], db = dest->dist[b];
+			dest->id[a] = ib;
+			dest->id[b] = ia;
+			dest->dist[a] = db;
+			dest->dist[b] = da;
+		}
+	}
+	for (int y = 0; y < n; y++)
+		for (int x = 0; x < n; x++) {
+			int i = y * n + x;
+			const uint8_t *c = (const uint8_t *)&dest->id[i];
+			uint32_t id = (uint32_t)c[0] << 16 | (uint32_t)c[1] << 8 | c[2];
+			double d = dest->dist[i];
+			dest->id[i] = id;
+			if (!id || d >= 1) {
+				dest->id[i] = 0;
+				dest->dist[i] = INFINITY;
+				continue;
+			}
+			/* window depth to the eye's z, then along the pixel's ray */
+			double zndc = 2 * d - 1, ze = 2 * zn * zf / (zf + zn - zndc * (zf - zn));
+			double xn = (2 * (x + 0.5) / n - 1) * t, yn = (1 - 2 * (y + 0.5) / n) * t;
+			dest->dist[i] = (float)(ze * sqrt(1 + xn * xn + yn * yn));
+		}
+	dest->cam = dl->cam;
 	return 0;
 }
 

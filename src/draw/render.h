@@ -28,6 +28,7 @@
 #include <stdint.h>
 
 #include "draw/frame.h"
+#include "draw/hemi.h"
 #include "figure/model.h"
 #include "draw/view.h"
 
@@ -73,6 +74,17 @@ int render_add_model(struct render *r, const struct model *m, char *err, size_t 
  * Returns 0, or -1 when the size is out of range (dest untouched).
  */
 int render_frame(struct render *r, const struct drawlist *dl, uint64_t t_us, struct frame *dest);
+
+/*
+ * The visibility map of §3.7.1 (hemi.h): dl is HEMI_N x HEMI_N pixels
+ * through a camera from hemi_camera, with the figures added by
+ * view_add_figure_ids (any other instances are taken as they are; lines,
+ * text, the floor and the background are not drawn). Renders into a small
+ * target of its own, so the last render_frame's picture is untouched,
+ * and fills dest (its camera too). Returns 0, or -1 for a list of another
+ * size. Allocates nothing.
+ */
+int render_hemicube(struct render *r, const struct drawlist *dl, struct hemi_map *dest);
 
 /* what the last render_frame drew */
 struct render_stats {

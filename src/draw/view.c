@@ -278,29 +278,67 @@ view_mesh_tess(enum view_mesh k, int fine, struct tess_mesh *dest)
 	return -1;
 }
 
-int
-view_add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base)
+/* the instances of m's geoms; fig < 0: coloured by segment with shadows, else flat id colours */
+static int
+add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base,
+	   int fig)
 {
 	int before = dl->ninst;
 	for (int g = 0; g < m->ngeom; g++) {
 		int seg = m->geom_seg[g];
+		float idc[4];
 		const float *rgba = &m->seg_rgba[4 * seg];
+		if (fig >= 0) {
+			view_id_rgba(view_id(fig, seg), idc);
+			rgba = idc;
+		}
 		struct view_part part[VIEW_GEOM_PARTS_MAX];
 		int n = view_geom_parts(m, g, part);
 		for (int k = 0; k < n; k++) {
 			struct xform x;
 			xform_mul(&s->seg_xf[seg], &part[k].xf, &x);
-			if (part[k].model_mesh >= 0) {
-				float mat[16];
-				view_mat_from_xform(&x, part[k].scale, mat);
-				view_add_instance(dl, mesh_base + part[k].model_mesh, mat, rgba, 1);
-			} else {
-				double ext = part[k].mesh == VIEW_MESH_BOX ? 0.5 : 1;
-				add_unit(dl, part[k].mesh, &x, part[k].scale, rgba, ext);
-			}
+			float mat[16];
+			view_mat_from_xform(&x, part[k].scale, mat);
+			if (part[k].model_mesh >= 0)
+				view_add_instance(dl, mesh_base + part[k].model_mesh, mat, rgba,
+						  fig < 0);
+			else if (fig >= 0) /* an id map casts no shadow */
+				view_add_instance(dl, part[k].mesh, mat, rgba, 0);
+			else
+				add_unit(dl, part[k].mesh, &x, part[k].scale, rgba,
+					 part[k].mesh == VIEW_MESH_BOX ? 0.5 : 1);
 		}
 	}
 	return dl->ninst - before;
+}
+
+int
+view_add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base)
+{
+	return add_figure(dl, m, s, mesh_base, -1);
+}
+
+uint32_t
+view_id(int fig, int seg)
+{
+	return (uint32_t)(fig + 1) << 16 | (uint32_t)(seg + 1);
+}
+
+void
+view_id_rgba(uint32_t id, float dest[4])
+{
+	/* k / 255 comes back from an 8 bit channel as k (pack.c rounds) */
+	dest[0] = (float)(id >> 16 & 0xff) / 255;
+	dest[1] = (float)(id >> 8 & 0xff) / 255;
+	dest[2] = (float)(id & 0xff) / 255;
+	dest[3] = 1;
+}
+
+int
+view_add_figure_ids(struct drawlist *dl, const struct model *m, const struct state *s,
+		    int mesh_base, int fig)
+{
+	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig);
 }
 
 /* ---- lines, triangles and text --------------------------------------------- */

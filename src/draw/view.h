@@ -212,6 +212,20 @@ void view_begin(struct drawlist *dl, const struct camera *cam, int w, int h);
 int view_add_figure(struct drawlist *dl, const struct model *m, const struct state *s,
 		    int mesh_base);
 
+/*
+ * Object ids for a visibility map (render_hemicube): figure slot fig
+ * (0 .. 254) and segment seg (0 .. 65534) as one 24 bit number, never 0
+ * (0 is "nothing"), and as the flat colour that draws it exactly.
+ */
+uint32_t view_id(int fig, int seg);
+void view_id_rgba(uint32_t id, float dest[4]);
+#define VIEW_ID_FIG(id) ((int)((id) >> 16) - 1)
+#define VIEW_ID_SEG(id) ((int)((id)&0xffff) - 1)
+
+/* the figure as view_add_figure places it, each geom in its flat id colour, no shadows */
+int view_add_figure_ids(struct drawlist *dl, const struct model *m, const struct state *s,
+			int mesh_base, int fig);
+
 /* one instance; mat is column-major; returns its index or -1 when full */
 int view_add_instance(struct drawlist *dl, int mesh, const float mat[16], const float rgba[4],
 		      int shadow);

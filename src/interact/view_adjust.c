@@ -187,6 +187,36 @@ view_adjust_focus(struct view_adjust *va, const struct camera *cam, const double
 }
 
 int
+view_adjust_turn_to(struct view_adjust *va, const struct camera *cam, const double origin[3],
+		    const double dir[3], uint64_t now_us)
+{
+	memset(va, 0, sizeof *va);
+	double d[3], u[3], u1[3];
+	for (int k = 0; k < 3; k++)
+		d[k] = cam->xf.p[k] - origin[k];
+	double dist = unit3(d, u);
+	if (!dist || !unit3(dir, u1))
+		return -1;
+	double h1, e1;
+	heading_elevation(u, &va->h0, &va->e0);
+	heading_elevation(u1, &h1, &e1);
+	e1 = fmax(-VIEWOP_ELEVATION_MAX, fmin(VIEWOP_ELEVATION_MAX, e1));
+	va->dh = wrap_pi(h1 - va->h0);
+	va->de = e1 - va->e0;
+	va->turn = fmax(fabs(va->dh), fabs(va->de));
+	if (va->turn < VIEW_ADJUST_MIN_TURN)
+		return 0;
+	va->d0 = va->d1 = dist;
+	va->from = *cam;
+	memcpy(va->origin, origin, sizeof va->origin);
+	view_camera_vrp(cam, va->r0);
+	va->begin_us = now_us;
+	va->active = 1;
+	view_adjust_at(va, 1, &va->to);
+	return 1;
+}
+
+int
 view_adjust_visible(const struct camera *cam, int w, int h, const double p[3])
 {
 	return view_adjust_inside(cam, w, h, p, 0);

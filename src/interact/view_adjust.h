@@ -68,6 +68,17 @@ int view_adjust_step(struct view_adjust *va, uint64_t now_us, uint64_t total_us,
 int view_adjust_focus(struct view_adjust *va, const struct camera *cam, const double origin[3],
 		      uint64_t now_us);
 
+/*
+ * §3.7.1: the eye turned about the origin until it lies along dir (world,
+ * any length) from it, at the same distance, and aimed at the origin;
+ * eased like the others, heading and elevation at once (elevation kept
+ * within +-VIEWOP_ELEVATION_MAX). Returns 1, 0 when the eye is already
+ * there (within VIEW_ADJUST_MIN_TURN; va->active 0), -1 for the eye on
+ * the origin or a zero direction.
+ */
+int view_adjust_turn_to(struct view_adjust *va, const struct camera *cam, const double origin[3],
+			const double dir[3], uint64_t now_us);
+
 /* 1 when p is in front of the camera and inside its w x h picture, 0 when not */
 int view_adjust_visible(const struct camera *cam, int w, int h, const double p[3]);
 
