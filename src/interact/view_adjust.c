@@ -96,15 +96,38 @@ view_adjust_at(const struct view_adjust *va, double p, struct camera *dest)
 		view_camera_aim(dest, eye, va->origin);
 }
 
+/* the eye's direction from origin (unit, into u) and its distance; 0 when the eye is on it */
+static double
+eye_from(const struct camera *cam, const double origin[3], double u[3])
+{
+	double d[3];
+	for (int k = 0; k < 3; k++)
+		d[k] = cam->xf.p[k] - origin[k];
+	return unit3(d, u);
+}
+
+/* the rest of va for a turn of cam about origin at distance dist (h0, e0, dh, de set), started */
+static int
+adjust_start(struct view_adjust *va, const struct camera *cam, const double origin[3], double dist,
+	     uint64_t now_us)
+{
+	va->d0 = va->d1 = dist;
+	va->from = *cam;
+	memcpy(va->origin, origin, sizeof va->origin);
+	view_camera_vrp(cam, va->r0);
+	va->turn = fmax(fabs(va->dh), fabs(va->de));
+	va->begin_us = now_us;
+	va->active = 1;
+	view_adjust_at(va, 1, &va->to);
+	return 1;
+}
+
 int
 view_adjust_begin(struct view_adjust *va, const struct camera *cam, const double origin[3],
 		  const double axis[3], enum view_adjust_kind kind, double limit, uint64_t now_us)
 {
 	memset(va, 0, sizeof *va);
-	double a[3], d[3], u[3];
-	for (int k = 0; k < 3; k++)
-		d[k] = cam->xf.p[k] - origin[k];
-	double dist = unit3(d, u);
+	double a[3], u[3], dist = eye_from(cam, origin, u);
 	if (!unit3(axis, a) || !dist || !isfinite(limit))
 		return -1;
 	double angle = acos(fmin(1, fabs(dot3(u, a)))); /* the line of sight to the axis line */
@@ -130,15 +153,7 @@ view_adjust_begin(struct view_adjust *va, const struct camera *cam, const double
 		e1 = -VIEWOP_ELEVATION_MAX;
 	va->dh = wrap_pi(h1 - va->h0);
 	va->de = e1 - va->e0;
-	va->d0 = va->d1 = dist;
-	va->from = *cam;
-	memcpy(va->origin, origin, sizeof va->origin);
-	view_camera_vrp(cam, va->r0);
-	va->turn = fmax(fabs(va->dh), fabs(va->de));
-	va->begin_us = now_us;
-	va->active = 1;
-	view_adjust_at(va, 1, &va->to);
-	return 1;
+	return adjust_start(va, cam, origin, dist, now_us);
 }
 
 int
@@ -169,21 +184,11 @@ view_adjust_focus(struct view_adjust *va, const struct camera *cam, const double
 		  uint64_t now_us)
 {
 	memset(va, 0, sizeof *va);
-	double d[3], u[3];
-	for (int k = 0; k < 3; k++)
-		d[k] = cam->xf.p[k] - origin[k];
-	double dist = unit3(d, u);
+	double u[3], dist = eye_from(cam, origin, u);
 	if (!dist)
 		return -1;
 	heading_elevation(u, &va->h0, &va->e0); /* the eye stays: no turn about the origin */
-	va->d0 = va->d1 = dist;
-	va->from = *cam;
-	memcpy(va->origin, origin, sizeof va->origin);
-	view_camera_vrp(cam, va->r0);
-	va->begin_us = now_us;
-	va->active = 1;
-	view_adjust_at(va, 1, &va->to);
-	return 1;
+	return adjust_start(va, cam, origin, dist, now_us);
 }
 
 int
@@ -191,10 +196,7 @@ view_adjust_turn_to(struct view_adjust *va, const struct camera *cam, const doub
 		    const double dir[3], uint64_t now_us)
 {
 	memset(va, 0, sizeof *va);
-	double d[3], u[3], u1[3];
-	for (int k = 0; k < 3; k++)
-		d[k] = cam->xf.p[k] - origin[k];
-	double dist = unit3(d, u);
+	double u[3], u1[3], dist = eye_from(cam, origin, u);
 	if (!dist || !unit3(dir, u1))
 		return -1;
 	double h1, e1;
@@ -203,17 +205,9 @@ view_adjust_turn_to(struct view_adjust *va, const struct camera *cam, const doub
 	e1 = fmax(-VIEWOP_ELEVATION_MAX, fmin(VIEWOP_ELEVATION_MAX, e1));
 	va->dh = wrap_pi(h1 - va->h0);
 	va->de = e1 - va->e0;
-	va->turn = fmax(fabs(va->dh), fabs(va->de));
-	if (va->turn < VIEW_ADJUST_MIN_TURN)
+	if (fmax(fabs(va->dh), fabs(va->de)) < VIEW_ADJUST_MIN_TURN)
 		return 0;
-	va->d0 = va->d1 = dist;
-	va->from = *cam;
-	memcpy(va->origin, origin, sizeof va->origin);
-	view_camera_vrp(cam, va->r0);
-	va->begin_us = now_us;
-	va->active = 1;
-	view_adjust_at(va, 1, &va->to);
-	return 1;
+	return adjust_start(va, cam, origin, dist, now_us);
 }
 
 int

@@ -34,6 +34,18 @@ def front(c):
     return next(v for v in c.request("list views")["views"] if v["name"] == "front")
 
 
+def turned(c, g, before, limit=3):
+    """the view once it has turned to aim at G from elsewhere (or as it is after limit s)"""
+    t0 = time.monotonic()
+    v = front(c)
+    while time.monotonic() - t0 < limit:
+        v = front(c)
+        if v["target"] == pytest.approx(g, abs=1e-6) and v["eye"] != before["eye"]:
+            break
+        time.sleep(0.02)
+    return v
+
+
 def test_a_wall_between_camera_and_g_is_avoided(daemon_factory):
     library = ["--library", str(ROOT / "src" / "figure" / "library")]
     with daemon_factory(extra=library).client() as c:
@@ -45,13 +57,7 @@ def test_a_wall_between_camera_and_g_is_avoided(daemon_factory):
         c.request("manipulate figure human")
         g = c.request("get manip")["position"]
         assert hits_box(before["eye"], g, WALL_LO, WALL_HI)  # the wall hides G
-        t0 = time.monotonic()
-        v = front(c)
-        while time.monotonic() - t0 < 3:
-            v = front(c)
-            if v["target"] == pytest.approx(g, abs=1e-6) and v["eye"] != before["eye"]:
-                break
-            time.sleep(0.02)
+        v = turned(c, g, before)
         assert v["target"] == pytest.approx(g, abs=1e-6)  # it ends aimed at G
         assert not hits_box(v["eye"], g, WALL_LO, WALL_HI)  # and sees it past the wall
         dist = lambda e: sum((x - y) ** 2 for x, y in zip(e, g)) ** 0.5  # noqa: E731
@@ -86,13 +92,7 @@ def test_a_new_drag_checks_again(daemon_factory):
         c.request("input pointer front 10 10")
         c.request("input button left down")
         c.request("input button left up")
-        t0 = time.monotonic()
-        v = front(c)
-        while time.monotonic() - t0 < 3:
-            v = front(c)
-            if v["target"] == pytest.approx(g, abs=1e-6) and v["eye"] != before["eye"]:
-                break
-            time.sleep(0.02)
+        v = turned(c, g, before)
         assert not hits_box(v["eye"], g, WALL_LO, WALL_HI)
 
 
