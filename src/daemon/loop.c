@@ -3,8 +3,6 @@
 
 #include <errno.h>
 #include <inttypes.h>
-#include <linux/input-event-codes.h>
-#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +13,7 @@
 
 #include "daemon/cmd.h"
 #include "daemon/events.h"
+#include "daemon/modes.h"
 #include "daemon/notify.h"
 #include "daemon/scene.h"
 #include "devices/can_dev.h"
@@ -23,18 +22,8 @@
 #include "devices/input_backends.h"
 #include "devices/input_devs.h"
 #include "devices/motion_scale.h"
-#include "figure/kin.h"
-#include "interact/interact.h"
-#include "interact/mouse_line.h"
-#include "interact/obstruct.h"
-#include "interact/pick.h"
-#include "interact/view_adjust.h"
-#include "interact/viewctl.h"
 #include "pose/attach.h"
 #include "pose/behave.h"
-
-#define LOOP_VIEW_UNDO 8 /* automatic view changes remembered per view */
-#define LOOP_EDGE_MARGIN 0.1 /* a dragged G this near the picture's edge: the view follows */
 
 struct loop {
 	struct daemon d;
@@ -55,14 +44,7 @@ struct loop {
 	double pointer_gain;
 	struct hotplug hotplug;   /* devices arriving; fd -1: not watched */
 	struct escape_chord escape; /* the grab's way out at the keyboard */
-	struct interact interact;   /* the mode the input drives */
-	struct viewctl viewctl[ENV_MAX_VIEWS]; /* change view, one machine per view (Appendix C) */
-	struct view_adjust adjust[ENV_MAX_VIEWS]; /* §3.7's automatic adjustments under way */
-	/* the cameras before each automatic change, newest last: C takes one back */
-	struct camera undo_view[ENV_MAX_VIEWS][LOOP_VIEW_UNDO];
-	int nundo_view[ENV_MAX_VIEWS];
-	int pointer_view;           /* the view the pointer was last in, -1: none yet */
-	double pointer_x, pointer_y;
+	struct modes modes;         /* the interactive modes the input drives, and their views */
 	struct scene scene;   /* the views' pictures */
 	int stop;
 };
@@ -101,391 +83,24 @@ run_own_command(struct loop *L, const char *line)
 	free(out.json);
 }
 
-/* view v's camera, as change view left it, back into the view (eye and target) */
-static void
-store_camera(struct loop *L, int v, const struct camera *cam)
-{
-	struct env_view *vw = &L->d.env.view[v];
-	memcpy(vw->eye, cam->xf.p, sizeof vw->eye);
-	view_camera_vrp(cam, vw->target);
-	L->scene.dirty = 1;
-}
-
-/* the view v's camera as it is now, journaled as the command that sets it */
-static void
-journal_camera(struct loop *L, int v)
-{
-	const struct env_view *vw = &L->d.env.view[v];
-	char line[256];
-	snprintf(line, sizeof line, "set camera %s eye=%.17g,%.17g,%.17g target=%.17g,%.17g,%.17g",
-		 vw->name, vw->eye[0], vw->eye[1], vw->eye[2], vw->target[0], vw->target[1],
-		 vw->target[2]);
-	run_own_command(L, line);
-}
-
-/* the view change view works in: the mode's, else the one the pointer was last in, else the first */
-static int
-current_view(const struct loop *L)
-{
-	const struct env *e = &L->d.env;
-	if (L->interact.mode != INTERACT_NONE && L->interact.view >= 0)
-		return L->interact.view;
-	if (L->pointer_view >= 0 && e->view[L->pointer_view].used)
-		return L->pointer_view;
-	for (int v = 0; v < ENV_MAX_VIEWS; v++)
-		if (e->view[v].used)
-			return v;
-	return -1;
-}
-
-/* the pointer outside a mode: where S picks */
-static void
-track_pointer(struct loop *L, const struct input_event_rec *e, long px, long py)
-{
-	const struct env *env = &L->d.env;
-	if (e->kind == INPUT_POINTER && (e->flags & INPUT_F_VIEW) && e->code < ENV_MAX_VIEWS) {
-		L->pointer_view = e->code;
-		L->pointer_x = e->x;
-		L->pointer_y = e->y;
-	} else if (e->kind == INPUT_MOTION && L->pointer_view >= 0 &&
-		   env->view[L->pointer_view].used) {
-		const struct env_view *vw = &env->view[L->pointer_view];
-		L->pointer_x = fmin(fmax(L->pointer_x + (double)px, 0), vw->width);
-		L->pointer_y = fmin(fmax(L->pointer_y + (double)py, 0), vw->height);
-	}
-}
-
-/* S picked: the snap's target is what lies under the pointer of view v */
-static void
-snap_pick(struct loop *L, int v, struct camera *cam)
-{
-	struct env *e = &L->d.env;
-	const struct env_view *vw = &e->view[v];
-	double x = L->interact.mode != INTERACT_NONE ? L->interact.px : L->pointer_x;
-	double y = L->interact.mode != INTERACT_NONE ? L->interact.py : L->pointer_y;
-	struct ray r;
-	struct pick_hit h;
-	int fig, hit = mouse_line(cam, vw->width, vw->height, x, y, &r) == 0 &&
-		       daemon_pick(&L->d, &r, cam->znear, -1, &h, &fig) > 0;
-	viewctl_snap_to(&L->viewctl[v], cam, hit ? h.point : NULL, real_now(NULL));
-}
-
-/*
- * Change view takes the event first (V enters it from any mode; inside,
- * everything is its own). Returns 1 when it took the event.
- */
-static int
-drive_view(struct loop *L, const struct input_event_rec *e, long px, long py)
-{
-	int v = current_view(L);
-	if (v < 0)
-		return 0;
-	struct camera cam;
-	view_camera_of_view(&L->d.env.view[v], &cam);
-	struct input_event_rec ev = *e;
-	if (ev.kind == INPUT_MOTION) { /* change view moves by pixels */
-		ev.x = (double)px;
-		ev.y = (double)py;
-	}
-	enum viewctl_result r = viewctl_event(&L->viewctl[v], &cam, L->interact.mode, &ev);
-	switch (r) {
-	case VIEWCTL_PASS:
-		return 0;
-	case VIEWCTL_CHANGED:
-		store_camera(L, v, &cam);
-		break;
-	case VIEWCTL_PICK:
-		snap_pick(L, v, &cam);
-		break;
-	case VIEWCTL_ENDED:
-		store_camera(L, v, &cam);
-		journal_camera(L, v);
-		break;
-	case VIEWCTL_TAKEN:
-	case VIEWCTL_ENTERED:
-		L->scene.dirty = 1;
-		break;
-	}
-	return 1;
-}
-
-/* the automatic adjustments under way (§3.7): about a second, eased, then journaled */
-static void
-adjust_frames(struct loop *L, uint64_t now_us)
-{
-	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
-		struct view_adjust *va = &L->adjust[v];
-		if (!va->active)
-			continue;
-		if (!L->d.env.view[v].used) {
-			va->active = 0;
-			continue;
-		}
-		struct camera cam;
-		int more = view_adjust_step(va, now_us, VIEW_ADJUST_US, VIEW_ADJUST_MIN_TURN, &cam);
-		store_camera(L, v, &cam);
-		const struct env_view *vw = &L->d.env.view[v];
-		if (L->interact.view == v) /* the operator sees the new line of sight */
-			interact_camera(&L->interact, &cam, vw->width, vw->height);
-		if (!more) {
-			journal_camera(L, v);
-			if (!strcmp(L->d.message, "adjusting the view"))
-				L->d.message[0] = '\0';
-		}
-	}
-}
-
-/* the snaps under way, one in-between each a frame */
-static void
-view_frames(struct loop *L, uint64_t now_us)
-{
-	adjust_frames(L, now_us);
-	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
-		if (!L->d.env.view[v].used || L->viewctl[v].state != VIEWCTL_SNAPPING)
-			continue;
-		struct camera cam;
-		view_camera_of_view(&L->d.env.view[v], &cam);
-		if (viewctl_frame(&L->viewctl[v], &cam, now_us) == VIEWCTL_CHANGED)
-			store_camera(L, v, &cam);
-	}
-}
-
-/* a drag ended: its constraint deleted as a command, so the journal has it too */
-static void
-end_drag(struct loop *L)
-{
-	run_own_command(L, "delete constraint " CMD_DRAG_CONSTRAINT);
-}
-
-/* the camera of view v before an automatic change, for C to take it back */
-static void
-remember_view(struct loop *L, int v, const struct camera *cam)
-{
-	if (L->nundo_view[v] == LOOP_VIEW_UNDO) { /* the oldest goes */
-		memmove(&L->undo_view[v][0], &L->undo_view[v][1],
-			sizeof L->undo_view[v][0] * (LOOP_VIEW_UNDO - 1));
-		L->nundo_view[v]--;
-	}
-	L->undo_view[v][L->nundo_view[v]++] = *cam;
-}
-
-/* C in a mode: the last automatic view change taken back; 1 when there was one */
-static int
-take_back_view(struct loop *L, int v)
-{
-	if (v < 0 || !L->nundo_view[v])
-		return 0;
-	L->adjust[v].active = 0;
-	const struct camera *cam = &L->undo_view[v][--L->nundo_view[v]];
-	store_camera(L, v, cam);
-	const struct env_view *vw = &L->d.env.view[v];
-	interact_camera(&L->interact, cam, vw->width, vw->height);
-	journal_camera(L, v);
-	return 1;
-}
-
-/*
- * §3.7: the same axis chosen again after the 20 degree rule's warning
- * turns the camera until it is clear; the operator then goes on.
- */
-static void
-maybe_adjust_view(struct loop *L, const struct camera *cam)
-{
-	struct interact *ia = &L->interact;
-	if (ia->mode != INTERACT_FIGURE && ia->mode != INTERACT_DRAG)
-		return;
-	const struct manip_refusal *rf = manip_refusal(&ia->m);
-	struct view_adjust *va = &L->adjust[ia->view];
-	if (!rf->active || !rf->repeat || va->active)
-		return;
-	enum view_adjust_kind kind =
-		rf->sel.mode == MANIP_MODE_LINEAR ? VIEW_ADJUST_ALONG : VIEW_ADJUST_ACROSS;
-	if (view_adjust_begin(va, cam, ia->m.g.p, rf->axis, kind, ia->m.limit, real_now(NULL)) > 0) {
-		remember_view(L, ia->view, cam);
-		snprintf(L->d.message, sizeof L->d.message, "adjusting the view");
-	}
-}
-
-/*
- * §3.7.1: the visibility map from p towards view v's camera, figure slot
- * skip left out (the manipulated figure's own body surrounds its origin:
- * it would hide every direction); when something nearer than the eye
- * hides p, the eye turns about p to the nearest clear direction, eased
- * like the other adjustments, remembered for C, journaled at the end.
- */
-static void
-avoid_obstruction(struct loop *L, int v, const double p[3], int skip)
-{
-	if (v < 0 || v >= ENV_MAX_VIEWS || !L->d.env.view[v].used || L->adjust[v].active)
-		return;
-	struct camera cam;
-	view_camera_of_view(&L->d.env.view[v], &cam);
-	double d[3] = { cam.xf.p[0] - p[0], cam.xf.p[1] - p[1], cam.xf.p[2] - p[2] }, dir[3];
-	double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-	char err[256];
-	if (!(dist > HEMI_ZNEAR))
-		return;
-	const struct hemi_map *m = scene_hemicube(&L->scene, &L->d, p, d, skip, err, sizeof err);
-	if (!m)
-		return;
-	if (obstruct_check(m, dist, OBSTRUCT_CONE, dir) == 1 &&
-	    view_adjust_turn_to(&L->adjust[v], &cam, p, dir, real_now(NULL)) > 0) {
-		remember_view(L, v, &cam);
-		snprintf(L->d.message, sizeof L->d.message, "adjusting the view");
-	}
-}
-
 static void
 bring_into_view(struct daemon *d, int v, const double p[3])
 {
 	struct loop *L = d->loop;
-	if (v < 0 || v >= ENV_MAX_VIEWS || !d->env.view[v].used || L->adjust[v].active)
-		return;
-	const struct env_view *vw = &d->env.view[v];
-	struct camera cam;
-	view_camera_of_view(vw, &cam);
-	if (!view_adjust_visible(&cam, vw->width, vw->height, p) &&
-	    view_adjust_focus(&L->adjust[v], &cam, p, real_now(NULL)) > 0)
-		remember_view(L, v, &cam);
-	else if (L->interact.mode != INTERACT_NONE && L->interact.view == v)
-		avoid_obstruction(L, v, p, L->interact.fig);
-}
-
-/* a primitive's goal from G, as its move command sets it (Table 5.2) */
-static void
-drive_primitive(struct loop *L, struct env_figure *f, struct interact *ia)
-{
-	struct behave *b = f->behave;
-	if (!b)
-		return;
-	env_sync_solver(&L->d.env, (int)(f - L->d.env.fig));
-	struct xform g;
-	interact_target(ia, &g);
-	switch (ia->primitive) {
-	case INTERACT_HAND:
-		behave_move_hand(b, f->model, f->state, f->ik, ia->side, &g, 0);
-		break;
-	case INTERACT_FOOT:
-		behave_move_foot(b, f->model, f->state, f->ik, ia->side, &g);
-		break;
-	case INTERACT_COM: {
-		/* move com shifts by offsets: those of G since the centre of mass last went */
-		kin_com(f->model, f->state);
-		double d[3] = { g.p[0] - f->state->com[0], g.p[1] - f->state->com[1],
-				g.p[2] - f->state->com[2] };
-		behave_move_com(b, f->model, f->state, f->ik, d[0], d[2], d[1]);
-		break;
-	}
-	case INTERACT_HEAD:
-		behave_move_head(b, f->ik, g.p);
-		break;
-	case INTERACT_PELVIS: {
-		/* rotate pelvis turns by increments: G's turn since the last one, in world axes */
-		double inv[9], turn[9];
-		for (int i = 0; i < 3; i++)
-			for (int j = 0; j < 3; j++)
-				inv[3 * i + j] = ia->applied_r[3 * j + i];
-		mathx_mat3_mul(g.r, inv, turn);
-		behave_rotate_pelvis(b, f->model, f->state, f->ik, turn);
-		memcpy(ia->applied_r, g.r, sizeof g.r);
-		break;
-	}
-	case INTERACT_EYES:
-		behave_move_eyes(b, f->ik, g.p);
-		break;
-	}
-}
-
-/* G (or the joint) moved: what the mode moves follows, at once */
-static void
-apply_mode(struct loop *L)
-{
-	struct interact *ia = &L->interact;
-	struct env *env = &L->d.env;
-	if (ia->mode == INTERACT_NONE || ia->fig < 0)
-		return;
-	struct env_figure *f = &env->fig[ia->fig];
-	switch (ia->mode) {
-	case INTERACT_FIGURE:
-		interact_target(ia, &f->state->root_xf);
-		kin_update(f->model, f->state);
-		break;
-	case INTERACT_JOINT:
-		f->state->q[ia->moved_dof] = ia->moved_value;
-		kin_update(f->model, f->state);
-		break;
-	case INTERACT_PRIMITIVE:
-		drive_primitive(L, f, ia);
-		break;
-	case INTERACT_DRAG: {
-		struct ik_constraint_def def = env->con[ia->con].def;
-		interact_target(ia, &def.goal_xf);
-		env_set_constraint(env, ia->con, &def);
-		break;
-	}
-	case INTERACT_NONE:
-		break;
-	}
-	L->scene.dirty = 1;
+	modes_bring_into_view(&L->modes, v, p);
 }
 
 static void
 mode_moved(struct daemon *d)
 {
-	apply_mode(d->loop);
+	struct loop *L = d->loop;
+	modes_apply(&L->modes);
 }
 
-/* an input event to the interactive mode; its target applied at once */
 static void
-drive_mode(struct loop *L, const struct input_event_rec *e, long px, long py)
+command_from_modes(void *ctx, const char *line)
 {
-	struct interact *ia = &L->interact;
-	if (ia->mode == INTERACT_NONE)
-		return;
-	struct env *env = &L->d.env;
-	const struct env_view *vw = ia->view >= 0 ? &env->view[ia->view] : NULL;
-	struct env_figure *f = ia->fig >= 0 ? &env->fig[ia->fig] : NULL;
-	struct env_constraint *con = ia->mode == INTERACT_DRAG && ia->con >= 0 ? &env->con[ia->con]
-									       : NULL;
-	if (!vw || !vw->used || !f || f->gen != ia->tag ||
-	    (ia->mode == INTERACT_DRAG && (!con || con->gen != ia->con_tag))) {
-		interact_end(ia); /* its view, figure or constraint went away */
-		return;
-	}
-	if (e->kind == INPUT_KEY && e->code == KEY_C && e->value == 1 && take_back_view(L, ia->view))
-		return;
-	struct camera cam;
-	view_camera_of_view(vw, &cam);
-	enum interact_mode mode = ia->mode;
-	int r = interact_input(ia, e, px, py, &cam, vw->width, vw->height);
-	if (r)
-		L->scene.dirty = 1;
-	maybe_adjust_view(L, &cam);
-	/* a new drag: is the object still in sight (§3.7.1)? */
-	if ((mode == INTERACT_FIGURE || mode == INTERACT_DRAG) && ia->mode == mode &&
-	    e->kind == INPUT_BUTTON && e->value == 1 &&
-	    (e->code == BTN_LEFT || e->code == BTN_MIDDLE || e->code == BTN_RIGHT))
-		avoid_obstruction(L, ia->view, ia->m.g.p, ia->fig);
-	if (r & INTERACT_ENDED) {
-		if (mode == INTERACT_DRAG)
-			end_drag(L);
-		return;
-	}
-	if (mode == INTERACT_DRAG && (r & INTERACT_RELEASED)) {
-		/* §4.6.2: the orientation offset resets when a button comes up */
-		struct xform eff;
-		xform_mul(&f->state->site_xf[con->def.effector_site], &con->def.effector_offset, &eff);
-		interact_reset_orientation(ia, &eff);
-		r |= INTERACT_MOVED;
-	}
-	if (!(r & INTERACT_MOVED))
-		return;
-	/* beyond the dissertation: a dragged G near the edge of the picture, the view follows */
-	if ((mode == INTERACT_FIGURE || mode == INTERACT_DRAG) && !L->adjust[ia->view].active &&
-	    !view_adjust_inside(&cam, vw->width, vw->height, ia->m.g.p, LOOP_EDGE_MARGIN) &&
-	    view_adjust_focus(&L->adjust[ia->view], &cam, ia->m.g.p, real_now(NULL)) > 0)
-		remember_view(L, ia->view, &cam);
-	apply_mode(L);
+	run_own_command(ctx, line);
 }
 
 /* the input queued since the last frame, taken in order */
@@ -507,9 +122,7 @@ take_input(struct loop *L)
 					"('set input grab=yes' takes it again)\n");
 		}
 		events_input(&L->events, &e, px, py);
-		track_pointer(L, &e, px, py);
-		if (!drive_view(L, &e, px, py))
-			drive_mode(L, &e, px, py);
+		modes_input(&L->modes, &e, px, py);
 	}
 }
 
@@ -575,7 +188,7 @@ settle_frame(struct daemon *d, int *changed)
 	struct loop *L = d->loop;
 	struct ik_clock clock = { virtual_now, L };
 	take_input(L);
-	view_frames(L, real_now(NULL)); /* a snap is eased over real time, settle or not */
+	modes_frame(&L->modes, real_now(NULL)); /* a snap is eased over real time, settle or not */
 	int rc = frame(L, &clock, L->period_us, changed);
 	events_posture_changes(&L->events);
 	return rc;
@@ -746,7 +359,7 @@ live_frame(struct loop *L)
 	uint64_t draw = (uint64_t)L->d.stats.draw_us;
 	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
 	take_input(L);
-	view_frames(L, real_now(NULL));
+	modes_frame(&L->modes, real_now(NULL));
 	frame(L, &clock, budget, &changed);
 	uint64_t now = real_now(NULL);
 	L->scene.dirty |= changed;
@@ -860,14 +473,10 @@ loop_run(const struct loop_config *cfg)
 	L->d.subscribe = subscribe;
 	L->d.render_view = render_view;
 	L->d.set_input = set_input;
-	interact_init(&L->interact);
-	L->d.interact = &L->interact;
+	modes_init(&L->modes, &L->d, &L->scene, command_from_modes, L);
+	L->d.interact = &L->modes.interact;
 	L->d.bring_into_view = bring_into_view;
 	L->d.mode_moved = mode_moved;
-	struct viewctl_gains gains = viewctl_default_gains();
-	for (int v = 0; v < ENV_MAX_VIEWS; v++)
-		viewctl_init(&L->viewctl[v], &gains);
-	L->pointer_view = -1;
 	L->hotplug.fd = -1;
 	input_queue_init(&L->input);
 	L->d.input = &L->input;

@@ -1,0 +1,424 @@
+/* modes.c - the interactive modes and the views they move (see modes.h) */
+#include "daemon/modes.h"
+
+#include <linux/input-event-codes.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "figure/kin.h"
+#include "interact/mouse_line.h"
+#include "interact/obstruct.h"
+#include "interact/pick.h"
+#include "pose/behave.h"
+
+void
+modes_init(struct modes *M, struct daemon *d, struct scene *scene,
+	   void (*run_command)(void *ctx, const char *line), void *ctx)
+{
+	memset(M, 0, sizeof *M);
+	M->d = d;
+	M->scene = scene;
+	M->run_command = run_command;
+	M->ctx = ctx;
+	interact_init(&M->interact);
+	struct viewctl_gains gains = viewctl_default_gains();
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		viewctl_init(&M->viewctl[v], &gains);
+	M->pointer_view = -1;
+}
+
+static uint64_t
+modes_now(const struct modes *M)
+{
+	return M->d->now_us ? M->d->now_us() : 0;
+}
+
+/* view v's camera, as change view left it, back into the view (eye and target) */
+static void
+store_camera(struct modes *M, int v, const struct camera *cam)
+{
+	struct env_view *vw = &M->d->env.view[v];
+	memcpy(vw->eye, cam->xf.p, sizeof vw->eye);
+	view_camera_vrp(cam, vw->target);
+	M->scene->dirty = 1;
+}
+
+/* the view v's camera as it is now, journaled as the command that sets it */
+static void
+journal_camera(struct modes *M, int v)
+{
+	const struct env_view *vw = &M->d->env.view[v];
+	char line[256];
+	snprintf(line, sizeof line, "set camera %s eye=%.17g,%.17g,%.17g target=%.17g,%.17g,%.17g",
+		 vw->name, vw->eye[0], vw->eye[1], vw->eye[2], vw->target[0], vw->target[1],
+		 vw->target[2]);
+	M->run_command(M->ctx, line);
+}
+
+/* the view change view works in: the mode's, else the one the pointer was last in, else the first */
+static int
+current_view(const struct modes *M)
+{
+	const struct env *e = &M->d->env;
+	if (M->interact.mode != INTERACT_NONE && M->interact.view >= 0)
+		return M->interact.view;
+	if (M->pointer_view >= 0 && e->view[M->pointer_view].used)
+		return M->pointer_view;
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		if (e->view[v].used)
+			return v;
+	return -1;
+}
+
+/* the pointer outside a mode: where S picks */
+static void
+track_pointer(struct modes *M, const struct input_event_rec *e, long px, long py)
+{
+	const struct env *env = &M->d->env;
+	if (e->kind == INPUT_POINTER && (e->flags & INPUT_F_VIEW) && e->code < ENV_MAX_VIEWS) {
+		M->pointer_view = e->code;
+		M->pointer_x = e->x;
+		M->pointer_y = e->y;
+	} else if (e->kind == INPUT_MOTION && M->pointer_view >= 0 &&
+		   env->view[M->pointer_view].used) {
+		const struct env_view *vw = &env->view[M->pointer_view];
+		M->pointer_x = fmin(fmax(M->pointer_x + (double)px, 0), vw->width);
+		M->pointer_y = fmin(fmax(M->pointer_y + (double)py, 0), vw->height);
+	}
+}
+
+/* S picked: the snap's target is what lies under the pointer of view v */
+static void
+snap_pick(struct modes *M, int v, struct camera *cam)
+{
+	struct env *e = &M->d->env;
+	const struct env_view *vw = &e->view[v];
+	double x = M->interact.mode != INTERACT_NONE ? M->interact.px : M->pointer_x;
+	double y = M->interact.mode != INTERACT_NONE ? M->interact.py : M->pointer_y;
+	struct ray r;
+	struct pick_hit h;
+	int fig, hit = mouse_line(cam, vw->width, vw->height, x, y, &r) == 0 &&
+		       daemon_pick(M->d, &r, cam->znear, -1, &h, &fig) > 0;
+	viewctl_snap_to(&M->viewctl[v], cam, hit ? h.point : NULL, modes_now(M));
+}
+
+/*
+ * Change view takes the event first (V enters it from any mode; inside,
+ * everything is its own). Returns 1 when it took the event.
+ */
+static int
+drive_view(struct modes *M, const struct input_event_rec *e, long px, long py)
+{
+	int v = current_view(M);
+	if (v < 0)
+		return 0;
+	struct camera cam;
+	view_camera_of_view(&M->d->env.view[v], &cam);
+	struct input_event_rec ev = *e;
+	if (ev.kind == INPUT_MOTION) { /* change view moves by pixels */
+		ev.x = (double)px;
+		ev.y = (double)py;
+	}
+	enum viewctl_result r = viewctl_event(&M->viewctl[v], &cam, M->interact.mode, &ev);
+	switch (r) {
+	case VIEWCTL_PASS:
+		return 0;
+	case VIEWCTL_CHANGED:
+		store_camera(M, v, &cam);
+		break;
+	case VIEWCTL_PICK:
+		snap_pick(M, v, &cam);
+		break;
+	case VIEWCTL_ENDED:
+		store_camera(M, v, &cam);
+		journal_camera(M, v);
+		break;
+	case VIEWCTL_TAKEN:
+	case VIEWCTL_ENTERED:
+		M->scene->dirty = 1;
+		break;
+	}
+	return 1;
+}
+
+/* the automatic adjustments under way (§3.7): about a second, eased, then journaled */
+static void
+adjust_frames(struct modes *M, uint64_t now_us)
+{
+	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
+		struct view_adjust *va = &M->adjust[v];
+		if (!va->active)
+			continue;
+		if (!M->d->env.view[v].used) {
+			va->active = 0;
+			continue;
+		}
+		struct camera cam;
+		int more = view_adjust_step(va, now_us, VIEW_ADJUST_US, VIEW_ADJUST_MIN_TURN, &cam);
+		store_camera(M, v, &cam);
+		const struct env_view *vw = &M->d->env.view[v];
+		if (M->interact.view == v) /* the operator sees the new line of sight */
+			interact_camera(&M->interact, &cam, vw->width, vw->height);
+		if (!more) {
+			journal_camera(M, v);
+			if (!strcmp(M->d->message, "adjusting the view"))
+				M->d->message[0] = '\0';
+		}
+	}
+}
+
+/* the snaps and adjustments under way, one in-between each a frame */
+void
+modes_frame(struct modes *M, uint64_t now_us)
+{
+	adjust_frames(M, now_us);
+	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
+		if (!M->d->env.view[v].used || M->viewctl[v].state != VIEWCTL_SNAPPING)
+			continue;
+		struct camera cam;
+		view_camera_of_view(&M->d->env.view[v], &cam);
+		if (viewctl_frame(&M->viewctl[v], &cam, now_us) == VIEWCTL_CHANGED)
+			store_camera(M, v, &cam);
+	}
+}
+
+/* a drag ended: its constraint deleted as a command, so the journal has it too */
+static void
+end_drag(struct modes *M)
+{
+	M->run_command(M->ctx, "delete constraint " CMD_DRAG_CONSTRAINT);
+}
+
+/* the camera of view v before an automatic change, for C to take it back */
+static void
+remember_view(struct modes *M, int v, const struct camera *cam)
+{
+	if (M->nundo_view[v] == MODES_VIEW_UNDO) { /* the oldest goes */
+		memmove(&M->undo_view[v][0], &M->undo_view[v][1],
+			sizeof M->undo_view[v][0] * (MODES_VIEW_UNDO - 1));
+		M->nundo_view[v]--;
+	}
+	M->undo_view[v][M->nundo_view[v]++] = *cam;
+}
+
+/* C in a mode: the last automatic view change taken back; 1 when there was one */
+static int
+take_back_view(struct modes *M, int v)
+{
+	if (v < 0 || !M->nundo_view[v])
+		return 0;
+	M->adjust[v].active = 0;
+	const struct camera *cam = &M->undo_view[v][--M->nundo_view[v]];
+	store_camera(M, v, cam);
+	const struct env_view *vw = &M->d->env.view[v];
+	interact_camera(&M->interact, cam, vw->width, vw->height);
+	journal_camera(M, v);
+	return 1;
+}
+
+/*
+ * §3.7: the same axis chosen again after the 20 degree rule's warning
+ * turns the camera until it is clear; the operator then goes on.
+ */
+static void
+maybe_adjust_view(struct modes *M, const struct camera *cam)
+{
+	struct interact *ia = &M->interact;
+	if (ia->mode != INTERACT_FIGURE && ia->mode != INTERACT_DRAG)
+		return;
+	const struct manip_refusal *rf = manip_refusal(&ia->m);
+	struct view_adjust *va = &M->adjust[ia->view];
+	if (!rf->active || !rf->repeat || va->active)
+		return;
+	enum view_adjust_kind kind =
+		rf->sel.mode == MANIP_MODE_LINEAR ? VIEW_ADJUST_ALONG : VIEW_ADJUST_ACROSS;
+	if (view_adjust_begin(va, cam, ia->m.g.p, rf->axis, kind, ia->m.limit, modes_now(M)) > 0) {
+		remember_view(M, ia->view, cam);
+		snprintf(M->d->message, sizeof M->d->message, "adjusting the view");
+	}
+}
+
+/*
+ * §3.7.1: the visibility map from p towards view v's camera, figure slot
+ * skip left out (the manipulated figure's own body surrounds its origin:
+ * it would hide every direction); when something nearer than the eye
+ * hides p, the eye turns about p to the nearest clear direction, eased
+ * like the other adjustments, remembered for C, journaled at the end.
+ */
+static void
+avoid_obstruction(struct modes *M, int v, const double p[3], int skip)
+{
+	if (v < 0 || v >= ENV_MAX_VIEWS || !M->d->env.view[v].used || M->adjust[v].active)
+		return;
+	struct camera cam;
+	view_camera_of_view(&M->d->env.view[v], &cam);
+	double d[3] = { cam.xf.p[0] - p[0], cam.xf.p[1] - p[1], cam.xf.p[2] - p[2] }, dir[3];
+	double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+	char err[256];
+	if (!(dist > HEMI_ZNEAR))
+		return;
+	const struct hemi_map *m = scene_hemicube(M->scene, M->d, p, d, skip, err, sizeof err);
+	if (!m)
+		return;
+	if (obstruct_check(m, dist, OBSTRUCT_CONE, dir) == 1 &&
+	    view_adjust_turn_to(&M->adjust[v], &cam, p, dir, modes_now(M)) > 0) {
+		remember_view(M, v, &cam);
+		snprintf(M->d->message, sizeof M->d->message, "adjusting the view");
+	}
+}
+
+void
+modes_bring_into_view(struct modes *M, int v, const double p[3])
+{
+	struct daemon *d = M->d;
+	if (v < 0 || v >= ENV_MAX_VIEWS || !d->env.view[v].used || M->adjust[v].active)
+		return;
+	const struct env_view *vw = &d->env.view[v];
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	if (!view_adjust_visible(&cam, vw->width, vw->height, p) &&
+	    view_adjust_focus(&M->adjust[v], &cam, p, modes_now(M)) > 0)
+		remember_view(M, v, &cam);
+	else if (M->interact.mode != INTERACT_NONE && M->interact.view == v)
+		avoid_obstruction(M, v, p, M->interact.fig);
+}
+
+/* a primitive's goal from G, as its move command sets it (Table 5.2) */
+static void
+drive_primitive(struct modes *M, struct env_figure *f, struct interact *ia)
+{
+	struct behave *b = f->behave;
+	if (!b)
+		return;
+	env_sync_solver(&M->d->env, (int)(f - M->d->env.fig));
+	struct xform g;
+	interact_target(ia, &g);
+	switch (ia->primitive) {
+	case INTERACT_HAND:
+		behave_move_hand(b, f->model, f->state, f->ik, ia->side, &g, 0);
+		break;
+	case INTERACT_FOOT:
+		behave_move_foot(b, f->model, f->state, f->ik, ia->side, &g);
+		break;
+	case INTERACT_COM: {
+		/* move com shifts by offsets: those of G since the centre of mass last went */
+		kin_com(f->model, f->state);
+		double d[3] = { g.p[0] - f->state->com[0], g.p[1] - f->state->com[1],
+				g.p[2] - f->state->com[2] };
+		behave_move_com(b, f->model, f->state, f->ik, d[0], d[2], d[1]);
+		break;
+	}
+	case INTERACT_HEAD:
+		behave_move_head(b, f->ik, g.p);
+		break;
+	case INTERACT_PELVIS: {
+		/* rotate pelvis turns by increments: G's turn since the last one, in world axes */
+		double inv[9], turn[9];
+		for (int i = 0; i < 3; i++)
+			for (int j = 0; j < 3; j++)
+				inv[3 * i + j] = ia->applied_r[3 * j + i];
+		mathx_mat3_mul(g.r, inv, turn);
+		behave_rotate_pelvis(b, f->model, f->state, f->ik, turn);
+		memcpy(ia->applied_r, g.r, sizeof g.r);
+		break;
+	}
+	case INTERACT_EYES:
+		behave_move_eyes(b, f->ik, g.p);
+		break;
+	}
+}
+
+/* G (or the joint) moved: what the mode moves follows, at once */
+void
+modes_apply(struct modes *M)
+{
+	struct interact *ia = &M->interact;
+	struct env *env = &M->d->env;
+	if (ia->mode == INTERACT_NONE || ia->fig < 0)
+		return;
+	struct env_figure *f = &env->fig[ia->fig];
+	switch (ia->mode) {
+	case INTERACT_FIGURE:
+		interact_target(ia, &f->state->root_xf);
+		kin_update(f->model, f->state);
+		break;
+	case INTERACT_JOINT:
+		f->state->q[ia->moved_dof] = ia->moved_value;
+		kin_update(f->model, f->state);
+		break;
+	case INTERACT_PRIMITIVE:
+		drive_primitive(M, f, ia);
+		break;
+	case INTERACT_DRAG: {
+		struct ik_constraint_def def = env->con[ia->con].def;
+		interact_target(ia, &def.goal_xf);
+		env_set_constraint(env, ia->con, &def);
+		break;
+	}
+	case INTERACT_NONE:
+		break;
+	}
+	M->scene->dirty = 1;
+}
+
+/* an input event to the interactive mode; its target applied at once */
+static void
+drive_mode(struct modes *M, const struct input_event_rec *e, long px, long py)
+{
+	struct interact *ia = &M->interact;
+	if (ia->mode == INTERACT_NONE)
+		return;
+	struct env *env = &M->d->env;
+	const struct env_view *vw = ia->view >= 0 ? &env->view[ia->view] : NULL;
+	struct env_figure *f = ia->fig >= 0 ? &env->fig[ia->fig] : NULL;
+	struct env_constraint *con = ia->mode == INTERACT_DRAG && ia->con >= 0 ? &env->con[ia->con]
+									       : NULL;
+	if (!vw || !vw->used || !f || f->gen != ia->tag ||
+	    (ia->mode == INTERACT_DRAG && (!con || con->gen != ia->con_tag))) {
+		interact_end(ia); /* its view, figure or constraint went away */
+		return;
+	}
+	if (e->kind == INPUT_KEY && e->code == KEY_C && e->value == 1 && take_back_view(M, ia->view))
+		return;
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	enum interact_mode mode = ia->mode;
+	int r = interact_input(ia, e, px, py, &cam, vw->width, vw->height);
+	if (r)
+		M->scene->dirty = 1;
+	maybe_adjust_view(M, &cam);
+	/* a new drag: is the object still in sight (§3.7.1)? */
+	if ((mode == INTERACT_FIGURE || mode == INTERACT_DRAG) && ia->mode == mode &&
+	    e->kind == INPUT_BUTTON && e->value == 1 &&
+	    (e->code == BTN_LEFT || e->code == BTN_MIDDLE || e->code == BTN_RIGHT))
+		avoid_obstruction(M, ia->view, ia->m.g.p, ia->fig);
+	if (r & INTERACT_ENDED) {
+		if (mode == INTERACT_DRAG)
+			end_drag(M);
+		return;
+	}
+	if (mode == INTERACT_DRAG && (r & INTERACT_RELEASED)) {
+		/* §4.6.2: the orientation offset resets when a button comes up */
+		struct xform eff;
+		xform_mul(&f->state->site_xf[con->def.effector_site], &con->def.effector_offset, &eff);
+		interact_reset_orientation(ia, &eff);
+		r |= INTERACT_MOVED;
+	}
+	if (!(r & INTERACT_MOVED))
+		return;
+	/* beyond the dissertation: a dragged G near the edge of the picture, the view follows */
+	if ((mode == INTERACT_FIGURE || mode == INTERACT_DRAG) && !M->adjust[ia->view].active &&
+	    !view_adjust_inside(&cam, vw->width, vw->height, ia->m.g.p, MODES_EDGE_MARGIN) &&
+	    view_adjust_focus(&M->adjust[ia->view], &cam, ia->m.g.p, modes_now(M)) > 0)
+		remember_view(M, ia->view, &cam);
+	modes_apply(M);
+}
+
+void
+modes_input(struct modes *M, const struct input_event_rec *e, long px, long py)
+{
+	track_pointer(M, e, px, py);
+	if (!drive_view(M, e, px, py))
+		drive_mode(M, e, px, py);
+}

@@ -1,0 +1,56 @@
+/*
+ * modes.h - the interactive modes the input drives and the views they
+ * move: the manipulation mode (src/interact/interact.h) applied to the
+ * figures, change view (V, Appendix C), the automatic viewing adjustments
+ * of §3.7 (a refused axis chosen again, an object off the screen or
+ * hidden, a dragged object near the edge) with C to take one back. The
+ * loop hands it every input event and calls modes_frame once a frame;
+ * what changes state for good (a drag's end, a view left) goes through
+ * run_command, so the journal has it as a command.
+ */
+#ifndef POSTURE_DAEMON_MODES_H
+#define POSTURE_DAEMON_MODES_H
+
+#include <stdint.h>
+
+#include "daemon/daemon.h"
+#include "daemon/scene.h"
+#include "devices/event.h"
+#include "interact/interact.h"
+#include "interact/view_adjust.h"
+#include "interact/viewctl.h"
+
+#define MODES_VIEW_UNDO 8      /* automatic view changes remembered per view */
+#define MODES_EDGE_MARGIN 0.1  /* a dragged G this near the picture's edge: the view follows */
+
+struct modes {
+	struct daemon *d;
+	struct scene *scene; /* its dirty flag: a picture changed */
+	void (*run_command)(void *ctx, const char *line); /* a line run and journaled */
+	void *ctx;
+	struct interact interact;              /* the mode the input drives */
+	struct viewctl viewctl[ENV_MAX_VIEWS]; /* change view, one machine per view */
+	struct view_adjust adjust[ENV_MAX_VIEWS]; /* §3.7's automatic adjustments under way */
+	/* the cameras before each automatic change, newest last: C takes one back */
+	struct camera undo_view[ENV_MAX_VIEWS][MODES_VIEW_UNDO];
+	int nundo_view[ENV_MAX_VIEWS];
+	int pointer_view;                      /* the view the pointer was last in, -1: none yet */
+	double pointer_x, pointer_y;
+};
+
+void modes_init(struct modes *M, struct daemon *d, struct scene *scene,
+		void (*run_command)(void *ctx, const char *line), void *ctx);
+
+/* one input event (px, py: a motion in pixels): change view first, else the mode */
+void modes_input(struct modes *M, const struct input_event_rec *e, long px, long py);
+
+/* once a frame: the snaps' and adjustments' in-betweens */
+void modes_frame(struct modes *M, uint64_t now_us);
+
+/* view v turned (eased) until p is on the screen and not hidden (§3.7, §3.7.1) */
+void modes_bring_into_view(struct modes *M, int v, const double p[3]);
+
+/* G (or the joint) moved from outside (a snap, a typed value): what the mode moves follows */
+void modes_apply(struct modes *M);
+
+#endif
