@@ -123,17 +123,10 @@ parse_hex_id(const char *s, uint32_t *dest)
 	if (n != 3 && n != 8)
 		return -1;
 	for (size_t i = 0; i < n; i++) {
-		char c = s[i];
-		unsigned d;
-		if (c >= '0' && c <= '9')
-			d = (unsigned)(c - '0');
-		else if (c >= 'a' && c <= 'f')
-			d = (unsigned)(c - 'a' + 10);
-		else if (c >= 'A' && c <= 'F')
-			d = (unsigned)(c - 'A' + 10);
-		else
+		int d = textfile_hex_digit(s[i]);
+		if (d < 0)
 			return -1;
-		v = v << 4 | d;
+		v = v << 4 | (unsigned)d;
 	}
 	if (n == 3 && v > CAN_SFF_MASK)
 		return -2;

@@ -9,18 +9,6 @@
 
 #define MAX_LINE 4096
 
-static int
-hex_digit(char c)
-{
-	if (c >= '0' && c <= '9')
-		return c - '0';
-	if (c >= 'a' && c <= 'f')
-		return c - 'a' + 10;
-	if (c >= 'A' && c <= 'F')
-		return c - 'A' + 10;
-	return -1;
-}
-
 /* "(SEC.FRAC)" into microseconds and nanoseconds; NULL or a message */
 static const char *
 time_parse(const char *s, size_t n, uint64_t *us_dest, uint16_t *ns_dest, int *digits_dest)
@@ -75,7 +63,7 @@ frame_parse(const char *s, size_t n, struct rec_candump_frame *f)
 		return "the frame's id must be 3 hex digits (standard) or 8 (extended)";
 	uint32_t id = 0;
 	for (size_t i = 0; i < idlen; i++) {
-		int d = hex_digit(s[i]);
+		int d = textfile_hex_digit(s[i]);
 		if (d < 0)
 			return "the frame's id is not hex";
 		id = id << 4 | (uint32_t)d;
@@ -115,15 +103,15 @@ frame_parse(const char *s, size_t n, struct rec_candump_frame *f)
 				break;
 			if (f->len == 8)
 				return "more than 8 data bytes";
-			if (i + 1 >= n || hex_digit(s[i]) < 0 || hex_digit(s[i + 1]) < 0)
+			if (i + 1 >= n || textfile_hex_digit(s[i]) < 0 || textfile_hex_digit(s[i + 1]) < 0)
 				return "the data must be pairs of hex digits";
-			f->data[f->len++] = (uint8_t)(hex_digit(s[i]) << 4 | hex_digit(s[i + 1]));
+			f->data[f->len++] = (uint8_t)(textfile_hex_digit(s[i]) << 4 | textfile_hex_digit(s[i + 1]));
 			i += 2;
 		}
 	}
 	if (i < n && s[i] == '_') {
 		/* raw DLC of an 8-byte frame */
-		int d = i + 2 == n ? hex_digit(s[i + 1]) : -1;
+		int d = i + 2 == n ? textfile_hex_digit(s[i + 1]) : -1;
 		if (f->len != 8 || d < 9)
 			return "a raw DLC (_9.._F) follows 8 bytes only";
 		f->len8_dlc = (uint8_t)d;

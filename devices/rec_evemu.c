@@ -91,18 +91,6 @@ at_break(const struct cursor *c)
 	return c->s == c->end || *c->s == ' ' || *c->s == '\t' || *c->s == '#';
 }
 
-static int
-hexval(char ch)
-{
-	if (ch >= '0' && ch <= '9')
-		return ch - '0';
-	if (ch >= 'a' && ch <= 'f')
-		return ch - 'a' + 10;
-	if (ch >= 'A' && ch <= 'F')
-		return ch - 'A' + 10;
-	return -1;
-}
-
 /* a hex number of 1..maxdigits digits after blanks: 0, or -1 */
 static int
 take_hex(struct cursor *c, int maxdigits, unsigned *dest)
@@ -110,10 +98,10 @@ take_hex(struct cursor *c, int maxdigits, unsigned *dest)
 	skip_blank(c);
 	unsigned v = 0;
 	int n = 0;
-	while (c->s < c->end && hexval(*c->s) >= 0) {
+	while (c->s < c->end && textfile_hex_digit(*c->s) >= 0) {
 		if (++n > maxdigits)
 			return -1;
-		v = v * 16 + (unsigned)hexval(*c->s++);
+		v = v * 16 + (unsigned)textfile_hex_digit(*c->s++);
 	}
 	if (!n || !at_break(c))
 		return -1;

@@ -42,18 +42,6 @@ skip_space(struct cur *c)
 		c->p++;
 }
 
-static int
-hexval(char ch)
-{
-	if (ch >= '0' && ch <= '9')
-		return ch - '0';
-	if (ch >= 'a' && ch <= 'f')
-		return ch - 'a' + 10;
-	if (ch >= 'A' && ch <= 'F')
-		return ch - 'A' + 10;
-	return -1;
-}
-
 /* an unsigned number in base 10 or 16 of at most maxdigits digits */
 static int
 number(struct cur *c, int base, unsigned maxdigits, uint64_t *dest)
@@ -61,7 +49,7 @@ number(struct cur *c, int base, unsigned maxdigits, uint64_t *dest)
 	uint64_t v = 0;
 	unsigned k = 0;
 	while (c->p < c->end) {
-		int d = hexval(*c->p);
+		int d = textfile_hex_digit(*c->p);
 		if (base == 10 && d > 9)
 			d = -1;
 		if (d < 0)

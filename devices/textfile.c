@@ -64,3 +64,15 @@ textfile_fail(char *err, size_t errlen, const char *name, unsigned line, const c
 	va_end(ap);
 	return -1;
 }
+
+int
+textfile_hex_digit(char c)
+{
+	if (c >= '0' && c <= '9')
+		return c - '0';
+	if (c >= 'a' && c <= 'f')
+		return c - 'a' + 10;
+	if (c >= 'A' && c <= 'F')
+		return c - 'A' + 10;
+	return -1;
+}

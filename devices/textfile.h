@@ -25,4 +25,7 @@ char *textfile_read(const char *path, size_t *n, char *err, size_t errlen);
 int textfile_fail(char *err, size_t errlen, const char *name, unsigned line, const char *fmt, ...)
 	__attribute__((format(printf, 5, 6)));
 
+/* the value of a hexadecimal digit (either case), or -1: every reader of hex text uses it */
+int textfile_hex_digit(char c);
+
 #endif

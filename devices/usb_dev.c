@@ -8,6 +8,7 @@
 
 #include "devices/devlog.h"
 #include "devices/input_devs.h"
+#include "devices/textfile.h"
 #include "devices/usb_dev.h"
 
 /* HID 1.11: the class descriptor, the report descriptor, the class requests */
@@ -80,11 +81,7 @@ usb_dev_hex(const char *s, int maxdigits, unsigned *dest, const char **end)
 	unsigned v = 0;
 	int n = 0;
 	for (; s[n] && s[n] != ':'; n++) {
-		char c = s[n];
-		int d = c >= '0' && c <= '9' ? c - '0'
-			: c >= 'a' && c <= 'f' ? c - 'a' + 10
-			: c >= 'A' && c <= 'F' ? c - 'A' + 10
-					       : -1;
+		int d = textfile_hex_digit(s[n]);
 		if (d < 0 || n == maxdigits)
 			return -1;
 		v = v * 16 + (unsigned)d;
