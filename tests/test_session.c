@@ -75,6 +75,13 @@ populate(struct env *e)
 		fg->state->q[d] = m->dof_lo[d] + (m->dof_hi[d] - m->dof_lo[d]) * rand() / RAND_MAX;
 	kin_update(m, fg->state);
 	kin_set_root(m, fg->state, model_find_site(m, "foot_l.balance"));
+	/* two sites moved on their segments, the root's one of them, turned */
+	struct xform loc = m->site_loc[model_find_site(m, "hand_r.palm")];
+	loc.p[1] += 0.0123456789;
+	env_place_site(e, f, model_find_site(m, "hand_r.palm"), &loc);
+	xform_elementary(0, 2, 1, 0.3, &loc);
+	loc.p[0] = 0.01;
+	env_place_site(e, f, fg->state->root_site, &loc);
 	struct ik_constraint_def c = ik_constraint_default_def();
 	c.effector_site = model_find_site(m, "hand_r.palm");
 	c.goal_xf.p[0] = 0.123456789012345678;
@@ -106,6 +113,9 @@ test_session_round_trip_is_exact(void **unused)
 	/* the posture itself, to the bit, and the ids */
 	assert_true(state_hash(a.fig[0].model, a.fig[0].state) ==
 		    state_hash(b.fig[0].model, b.fig[0].state));
+	for (int k = 0; k < a.fig[0].model->nsite; k++)
+		assert_memory_equal(&a.fig[0].state->site_xf[k], &b.fig[0].state->site_xf[k],
+				    sizeof(struct xform));
 	assert_int_equal(env_find_constraint(&b, "reach"), env_find_constraint(&a, "reach"));
 	char ida[32], idb[32];
 	env_constraint_id(&a, 0, ida);
@@ -215,7 +225,8 @@ test_bad_sessions_load_nothing(void **unused)
 	size_t len;
 	char *text = session_to_string(&good, &len), err[300];
 	const char *cuts[] = { "session 2\n", "sesion 1\nend\n", "session 1\nfigure x slot=0 gen=1 robot\nend\n",
-			       "session 1\nq nobody 1,2\nend\n" };
+			       "session 1\nq nobody 1,2\nend\n",
+			       "session 1\nsite nobody a.b 0,0,0,0,0,0,1\nend\n" };
 	for (size_t i = 0; i < sizeof cuts / sizeof *cuts; i++) {
 		env_init(&e);
 		assert_int_equal(session_read(cuts[i], strlen(cuts[i]), ".", NULL, &e, err, sizeof err), -1);
@@ -235,6 +246,18 @@ test_bad_sessions_load_nothing(void **unused)
 	memcpy(broken + (q - text) + 7, "99", 2);
 	env_init(&e);
 	assert_int_equal(session_read(broken, len, ".", NULL, &e, err, sizeof err), -1);
+	free(broken);
+	/* a moved site whose quaternion is not of unit length */
+	char *site = strstr(text, "\nsite eve hand_r.palm ");
+	assert_non_null(site);
+	broken = strdup(text);
+	char *w = strchr(broken + (site - text) + 22, ',');
+	w = strchr(w + 1, ',');
+	w = strchr(w + 1, ','); /* the quaternion's x */
+	w[1] = '7';
+	env_init(&e);
+	assert_int_equal(session_read(broken, len, ".", NULL, &e, err, sizeof err), -1);
+	assert_non_null(strstr(err, "unit length"));
 	free(broken);
 	free(text);
 	env_clear(&good);

@@ -1,5 +1,6 @@
 /* cmd_joint.c - joint values, sites, the root and the figure's place */
 #include <stdio.h>
+#include <math.h>
 #include <string.h>
 
 #include "daemon/cmd_ctx.h"
@@ -146,6 +147,32 @@ cmd_set_location(struct cmd_ctx *c)
 	if (given)
 		memcpy(f->state->root_xf.r, r, sizeof f->state->root_xf.r);
 	kin_update(f->model, f->state);
+	return 0;
+}
+
+/* set site FIG SEG.SITE X Y Z [rot=AXIS,ANGLE]: a site moved on its segment */
+int
+cmd_set_site(struct cmd_ctx *c)
+{
+	int fig = cmd_figure(c, c->argv[0]);
+	if (fig < 0)
+		return -1;
+	struct env_figure *f = &c->d->env.fig[fig];
+	int site = model_find_site(f->model, c->argv[1]);
+	if (site < 0)
+		return cmd_fail(c, "not-found", "no site '%.60s' on %s", c->argv[1], f->name);
+	struct xform loc = f->model->site_loc[site];
+	for (int i = 0; i < 3; i++)
+		if (words_number(c->argv[2 + i], UNIT_LENGTH, &loc.p[i]) < 0 || !(fabs(loc.p[i]) < 1e3))
+			return cmd_fail(c, "bad-number", "X Y Z: lengths within 1 km, such as 0.1 or 3cm");
+	for (int i = 5; i < c->argc; i++)
+		if (!words_is_key(c->argv[i], "rot"))
+			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
+	int given;
+	if (cmd_rotation(c, loc.r, &given) < 0)
+		return -1;
+	env_place_site(&c->d->env, fig, site, &loc);
+	json_object_set_new(c->result, "position", cmd_vec(f->state->site_xf[site].p, 3));
 	return 0;
 }
 

@@ -98,6 +98,39 @@ cmd_manipulate_figure(struct cmd_ctx *c)
 	return 0;
 }
 
+/*
+ * manipulate site FIG SEG.SITE [view=VIEW]: G starts on the site and the
+ * site moves on its segment as G moves; the segment stays where it is. A
+ * site its segment hangs from (other than the root) would carry the
+ * segment along instead, away from G: refused, with the way out.
+ */
+int
+cmd_manipulate_site(struct cmd_ctx *c)
+{
+	int fig, v;
+	if (mode_args(c, 2, NULL, &fig, &v) < 0)
+		return -1;
+	const struct env_figure *f = &c->d->env.fig[fig];
+	int site = model_find_site(f->model, c->argv[1]);
+	if (site < 0)
+		return cmd_fail(c, "not-found", "no site '%.60s' on %s", c->argv[1], f->name);
+	int seg = f->model->site_seg[site];
+	if (site != f->state->root_site && f->state->seg_root_site[seg] == site)
+		return cmd_fail(c, "bad-argument",
+				"%s hangs from %s: moving it would move the segment, not the site "
+				"(root the figure there first: set root %s %s)",
+				f->model->seg_name[seg], c->argv[1], f->name, c->argv[1]);
+	if (c->client < 0)
+		return 0;
+	struct camera cam;
+	const struct env_view *vw = mode_camera(c, v, &cam);
+	const struct xform *at = &f->state->site_xf[site];
+	interact_start(c->d->interact, INTERACT_SITE, fig, v, at, at, &cam, vw->width, vw->height);
+	c->d->interact->site = site;
+	mode_started(c, fig, "site", vw);
+	return 0;
+}
+
 /* manipulate joint FIG JOINT [view=VIEW] (§3.8): the buttons turn its DOFs until ESC */
 int
 cmd_manipulate_joint(struct cmd_ctx *c)

@@ -190,6 +190,13 @@ end_drag(struct modes *M)
 	M->run_command(M->ctx, "delete constraint " CMD_DRAG_CONSTRAINT);
 }
 
+/* the modes whose object is where G is: the view adjusts to keep G workable (§3.7) */
+static int
+moves_by_operator(enum interact_mode mode)
+{
+	return mode == INTERACT_FIGURE || mode == INTERACT_DRAG || mode == INTERACT_SITE;
+}
+
 /* the camera of view v before an automatic change, for C to take it back */
 static void
 remember_view(struct modes *M, int v, const struct camera *cam)
@@ -225,7 +232,7 @@ static void
 maybe_adjust_view(struct modes *M, const struct camera *cam)
 {
 	struct interact *ia = &M->interact;
-	if (ia->mode != INTERACT_FIGURE && ia->mode != INTERACT_DRAG)
+	if (!moves_by_operator(ia->mode))
 		return;
 	const struct manip_refusal *rf = manip_refusal(&ia->m);
 	struct view_adjust *va = &M->adjust[ia->view];
@@ -343,6 +350,15 @@ modes_apply(struct modes *M)
 		interact_target(ia, &f->state->root_xf);
 		kin_update(f->model, f->state);
 		break;
+	case INTERACT_SITE: {
+		/* the site's new frame on its segment, which stays put */
+		struct xform g, seg_inv, loc;
+		interact_target(ia, &g);
+		xform_inv(&f->state->seg_xf[f->model->site_seg[ia->site]], &seg_inv);
+		xform_mul(&seg_inv, &g, &loc);
+		env_place_site(env, ia->fig, ia->site, &loc);
+		break;
+	}
 	case INTERACT_JOINT:
 		f->state->q[ia->moved_dof] = ia->moved_value;
 		kin_update(f->model, f->state);
@@ -389,7 +405,7 @@ drive_mode(struct modes *M, const struct input_event_rec *e, long px, long py)
 		M->scene->dirty = 1;
 	maybe_adjust_view(M, &cam);
 	/* a new drag: is the object still in sight (§3.7.1)? */
-	if ((mode == INTERACT_FIGURE || mode == INTERACT_DRAG) && ia->mode == mode &&
+	if (moves_by_operator(mode) && ia->mode == mode &&
 	    e->kind == INPUT_BUTTON && e->value == 1 &&
 	    (e->code == BTN_LEFT || e->code == BTN_MIDDLE || e->code == BTN_RIGHT))
 		avoid_obstruction(M, ia->view, ia->m.g.p, ia->fig);
@@ -408,7 +424,7 @@ drive_mode(struct modes *M, const struct input_event_rec *e, long px, long py)
 	if (!(r & INTERACT_MOVED))
 		return;
 	/* beyond the dissertation: a dragged G near the edge of the picture, the view follows */
-	if ((mode == INTERACT_FIGURE || mode == INTERACT_DRAG) && !M->adjust[ia->view].active &&
+	if (moves_by_operator(mode) && !M->adjust[ia->view].active &&
 	    !view_adjust_inside(&cam, vw->width, vw->height, ia->m.g.p, MODES_EDGE_MARGIN) &&
 	    view_adjust_focus(&M->adjust[ia->view], &cam, ia->m.g.p, modes_now(M)) > 0)
 		remember_view(M, ia->view, &cam);

@@ -1,6 +1,7 @@
 /* session.c - sessions and postures as versioned text */
 #include "daemon/session.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,6 +36,15 @@ write_figure_posture(const struct env_figure *fg, FILE *f)
 	const struct model *m = fg->model;
 	const struct state *s = fg->state;
 	char site[2 * MODEL_NAME_MAX];
+	/* sites moved on their segments first: the root's frame and the q depend on them */
+	for (int k = 0; k < m->nsite; k++)
+		if (m->site_moved[k]) {
+			fprintf(f, "site %s %s ", fg->name, model_site_fullname(m, k, site, sizeof site));
+			write_vec(f, &m->site_pos[3 * k], 3);
+			fprintf(f, ",");
+			write_vec(f, &m->site_quat[4 * k], 4);
+			fprintf(f, "\n");
+		}
 	fprintf(f, "root %s %s ", fg->name, model_site_fullname(m, s->root_site, site, sizeof site));
 	write_xform(f, &s->root_xf);
 	/* one comma-separated word: a figure may have more dofs than a line has words */
@@ -317,6 +327,29 @@ read_root(struct reader *r, struct env *e)
 	return 0;
 }
 
+/* site FIGURE SEG.SITE X,Y,Z,QX,QY,QZ,QW: a site moved on its segment */
+static int
+read_site(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	int fig = w->n == 4 ? find_fig(e, w->w[1]) : -1;
+	if (fig < 0)
+		return fail(r, "expected: site FIGURE SEG.SITE X,Y,Z,QX,QY,QZ,QW for a figure defined above");
+	struct env_figure *f = &e->fig[fig];
+	int site = model_find_site(f->model, w->w[2]);
+	double v[7];
+	if (site < 0 || words_list(w->w[3], UNIT_NONE, 7, v) < 0)
+		return fail(r, "no site %s on %s, or not 7 numbers", w->w[2], f->name);
+	double n2 = v[3] * v[3] + v[4] * v[4] + v[5] * v[5] + v[6] * v[6];
+	if (!(fabs(n2 - 1) < 1e-9) || !(fabs(v[0]) < 1e6 && fabs(v[1]) < 1e6 && fabs(v[2]) < 1e6))
+		return fail(r, "site %s: the quaternion is not of unit length, or the position is wild",
+			    w->w[2]);
+	model_set_site(f->model, site, v, v + 3);
+	f->ik_stale = 1;
+	kin_update(f->model, f->state);
+	return 0;
+}
+
 static int
 read_q(struct reader *r, struct env *e)
 {
@@ -527,6 +560,8 @@ session_read(const char *text, size_t len, const char *base_dir, const char *lib
 			ok = r->w.n == 2 && read_uint(r->w.w[1], 0xffffffffu, &next_gen) == 0 ? 0 : fail(r, "bad next_gen");
 		else if (!strcmp(kw, "figure"))
 			ok = read_figure(r, dest, base_dir, library_dir);
+		else if (!strcmp(kw, "site"))
+			ok = read_site(r, dest);
 		else if (!strcmp(kw, "root"))
 			ok = read_root(r, dest);
 		else if (!strcmp(kw, "q"))
@@ -679,7 +714,9 @@ session_apply_line(struct env *e, const char *line, size_t len, char *err, size_
 	*r = (struct reader){ line, line + len, 0, err, errlen, { 0 } };
 	int rc = next_line(r);
 	if (rc > 0) {
-		if (!strcmp(r->w.w[0], "root"))
+		if (!strcmp(r->w.w[0], "site"))
+			rc = read_site(r, e);
+		else if (!strcmp(r->w.w[0], "root"))
 			rc = read_root(r, e);
 		else if (!strcmp(r->w.w[0], "q"))
 			rc = read_q(r, e);

@@ -414,6 +414,7 @@ check_tree(struct model_builder *b)
 	X(seg_ngeom, m->nseg) X(site_name, m->nsite) X(site_seg, m->nsite)     \
 	X(site_pos, 3 * m->nsite) X(site_quat, 4 * m->nsite)                   \
 	X(site_loc, m->nsite) X(site_loc_inv, m->nsite) X(site_pure, m->nsite)             \
+	X(site_moved, m->nsite)                                                \
 	X(jnt_name, m->njnt) X(jnt_site_from, m->njnt)   \
 	X(jnt_site_to, m->njnt) X(jnt_dof0, m->njnt) X(jnt_ndof, m->njnt)      \
 	X(dof_jnt, m->ndof) X(dof_kind, m->ndof) X(dof_axis, m->ndof)          \
@@ -424,6 +425,24 @@ check_tree(struct model_builder *b)
 	X(mesh_path, m->nmesh) X(mesh_vert0, m->nmesh) X(mesh_nvert, m->nmesh) \
 	X(mesh_face0, m->nmesh) X(mesh_nface, m->nmesh)                        \
 	X(mesh_vert, 3 * m->nvert) X(mesh_face, 3 * m->nface)
+
+/* site k's location and what is derived from it */
+static void
+place_site(struct model *m, int k, const double pos[3], const double quat[4])
+{
+	memcpy(&m->site_pos[3 * k], pos, sizeof(double) * 3);
+	memcpy(&m->site_quat[4 * k], quat, sizeof(double) * 4);
+	xform_from_pos_quat(pos, quat, &m->site_loc[k]);
+	xform_inv(&m->site_loc[k], &m->site_loc_inv[k]);
+	m->site_pure[k] = quat[0] == 0 && quat[1] == 0 && quat[2] == 0;
+}
+
+void
+model_set_site(struct model *m, int site, const double pos[3], const double quat[4])
+{
+	place_site(m, site, pos, quat);
+	m->site_moved[site] = 1;
+}
 
 static struct model *
 model_alloc(int nseg, int nsite, int njnt, int ndof, int ngeom, int nmesh, int nvert, int nface)
@@ -493,12 +512,7 @@ model_builder_finish(struct model_builder *b)
 			site_map[i] = ns;
 			memcpy(m->site_name[ns], b->site[i].name, MODEL_NAME_MAX);
 			m->site_seg[ns] = s;
-			memcpy(&m->site_pos[3 * ns], b->site[i].pos, sizeof b->site[i].pos);
-			memcpy(&m->site_quat[4 * ns], b->site[i].quat, sizeof b->site[i].quat);
-			xform_from_pos_quat(b->site[i].pos, b->site[i].quat, &m->site_loc[ns]);
-			xform_inv(&m->site_loc[ns], &m->site_loc_inv[ns]);
-			m->site_pure[ns] = b->site[i].quat[0] == 0 && b->site[i].quat[1] == 0 &&
-					   b->site[i].quat[2] == 0;
+			place_site(m, ns, b->site[i].pos, b->site[i].quat);
 			ns++;
 		}
 		m->seg_nsite[s] = ns - m->seg_site0[s];

@@ -56,6 +56,7 @@ struct model {
 	struct xform *site_loc;            /* nsite: pos + quat as a transform */
 	struct xform *site_loc_inv;        /* nsite: its inverse */
 	unsigned char *site_pure;          /* nsite: 1 when the location is a pure translation */
+	unsigned char *site_moved;         /* nsite: 1 when model_set_site moved it since the build */
 
 	/* joints: connect site_from to site_to; transform = dof_0 * dof_1 * ... */
 	char (*jnt_name)[MODEL_NAME_MAX]; /* njnt */
@@ -170,6 +171,14 @@ struct model *model_copy(const struct model *m);
 
 /* 1 when every field of a and b is identical (bit for bit for numbers) */
 int model_equal(const struct model *a, const struct model *b);
+
+/*
+ * Moves a site on its segment (pos, unit quaternion x y z w, segment
+ * frame): its location, the inverse and the pure flag follow, and the site
+ * is marked moved, so a session can write it. The state's global frames
+ * are stale until kin_update.
+ */
+void model_set_site(struct model *m, int site, const double pos[3], const double quat[4]);
 
 /* lookups by name; -1 when absent. model_find_site takes "segment.site". */
 int model_find_segment(const struct model *m, const char *name);

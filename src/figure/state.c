@@ -168,5 +168,12 @@ state_hash(const struct model *m, const struct state *s)
 	h = fnv1a(h, s->q, sizeof *s->q * (size_t)m->ndof);
 	h = fnv1a(h, &s->root_site, sizeof s->root_site);
 	h = fnv1a(h, &s->root_xf, sizeof s->root_xf);
+	/* a site moved on its segment moves what hangs from it: part of the posture */
+	for (int k = 0; k < m->nsite; k++)
+		if (m->site_moved[k]) {
+			h = fnv1a(h, &k, sizeof k);
+			h = fnv1a(h, &m->site_pos[3 * k], sizeof(double) * 3);
+			h = fnv1a(h, &m->site_quat[4 * k], sizeof(double) * 4);
+		}
 	return h;
 }

@@ -263,6 +263,8 @@ interact_mode_to_str(enum interact_mode m)
 		return "joint";
 	case INTERACT_PRIMITIVE:
 		return "primitive";
+	case INTERACT_SITE:
+		return "site";
 	}
 	return "none";
 }

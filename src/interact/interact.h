@@ -32,6 +32,7 @@ enum interact_mode {
 	INTERACT_DRAG,   /* drag: G is the goal of a constraint on a site (§4.6.1) */
 	INTERACT_JOINT,  /* manipulate joint: the buttons turn its DOFs (§3.8) */
 	INTERACT_PRIMITIVE, /* a Chapter 5 primitive (Table 5.2): G feeds a behaviour command */
+	INTERACT_SITE,   /* manipulate site: the site moves on its segment with G */
 };
 
 /* the primitives a mode can drive, as the behaviour commands name them */
@@ -69,6 +70,7 @@ struct interact {
 	const struct state *state;
 	int joint;
 	struct joint_manip jm;
+	int site;             /* INTERACT_SITE: the site G carries */
 	enum interact_primitive primitive; /* INTERACT_PRIMITIVE: which, and the side */
 	int side;
 	double applied_r[9];  /* INTERACT_PELVIS: G's rotation the pelvis has been turned to */

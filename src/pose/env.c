@@ -253,3 +253,20 @@ env_find_view(const struct env *e, const char *name)
 			return i;
 	return -1;
 }
+
+void
+env_place_site(struct env *e, int fig, int site, const struct xform *loc)
+{
+	struct env_figure *f = &e->fig[fig];
+	double q[4];
+	mathx_mat_to_quat(loc->r, q);
+	struct xform seg;
+	int root = site == f->state->root_site;
+	if (root)
+		xform_mul(&f->state->site_xf[site], &f->model->site_loc_inv[site], &seg);
+	model_set_site(f->model, site, loc->p, q);
+	if (root)
+		xform_mul(&seg, &f->model->site_loc[site], &f->state->root_xf);
+	f->ik_stale = 1;
+	kin_update(f->model, f->state);
+}

@@ -131,6 +131,14 @@ int env_solver_index(const struct env *e, int slot);
 /* a view by name, or -1 */
 int env_find_view(const struct env *e, const char *name);
 
+/*
+ * Moves site `site` of figure fig to loc (its segment's frame), marking it
+ * moved (model_set_site), the figure updated. The root site is where the
+ * figure is held: its segment stays put and the root's global frame moves
+ * with the site, rather than the whole figure moving under it.
+ */
+void env_place_site(struct env *e, int fig, int site, const struct xform *loc);
+
 /* number of figures */
 int env_count(const struct env *e);
 
