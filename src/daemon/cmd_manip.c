@@ -3,6 +3,7 @@
  * starts the mode the kiosk starts, the input lines (and the devices) drive
  * it through the loop, ESC ends it, `get manip` says where G is.
  */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -347,12 +348,53 @@ cmd_snap(struct cmd_ctx *c)
 	return 0;
 }
 
+/*
+ * set manip [increments=on|off] [step=LENGTH] [turn=ANGLE]: motion in
+ * steps (1 cm and 5 degrees unless set), for this mode and the next ones.
+ */
+static int
+set_increments(struct cmd_ctx *c, struct interact *ia)
+{
+	int on = ia->increments;
+	double step = ia->def.step, turn = ia->def.step_angle;
+	for (int i = 0; i < c->argc; i++) {
+		const char *w = c->argv[i], *v = strchr(w, '=');
+		if (words_is_key(w, "increments")) {
+			if (strcmp(v + 1, "on") && strcmp(v + 1, "off"))
+				return cmd_fail(c, "bad-argument", "increments=on|off");
+			on = !strcmp(v + 1, "on");
+		} else if (words_is_key(w, "step")) {
+			if (words_number(v + 1, UNIT_LENGTH, &step) < 0 || !(step >= 1e-4 && step <= 10))
+				return cmd_fail(c, "bad-number", "step=LENGTH from 0.1mm to 10m, such as 5mm");
+		} else if (words_is_key(w, "turn")) {
+			if (words_number(v + 1, UNIT_ANGLE, &turn) < 0 ||
+			    !(turn >= 0.01 * M_PI / 180 && turn <= M_PI))
+				return cmd_fail(c, "bad-number", "turn=ANGLE from 0.01deg to 180deg, such as 15deg");
+		} else {
+			return cmd_fail(c, "bad-argument", "increments=on|off step=LENGTH turn=ANGLE, "
+					"or a value alone");
+		}
+	}
+	interact_increments(ia, on, step, turn);
+	json_object_set_new(c->result, "increments", json_boolean(on));
+	json_object_set_new(c->result, "step", json_real(step));
+	json_object_set_new(c->result, "turn", json_real(turn));
+	return 0;
+}
+
 /* set manip VALUE: a typed displacement along (or turn about) the active axis, exactly */
 int
 cmd_set_manip(struct cmd_ctx *c)
 {
 	struct interact *ia = c->d->interact;
-	if (!ia || ia->mode == INTERACT_NONE)
+	if (!ia)
+		return cmd_fail(c, "bad-argument", "this daemon takes no input");
+	if (words_is_key(c->argv[0], "increments") || words_is_key(c->argv[0], "step") ||
+	    words_is_key(c->argv[0], "turn"))
+		return set_increments(c, ia);
+	if (c->argc != 1)
+		return cmd_fail(c, "bad-argument", "one value: a length or an angle");
+	if (ia->mode == INTERACT_NONE)
 		return cmd_fail(c, "bad-argument", "a value is typed in a mode");
 	if (ia->mode == INTERACT_JOINT) { /* the selected DOF's displacement, in its own sense */
 		int rot = interact_joint_rotation(ia);
@@ -367,14 +409,9 @@ cmd_set_manip(struct cmd_ctx *c)
 		json_object_set_new(c->result, "value", json_real(ia->moved_value));
 		return 0;
 	}
-	if (words_is_key(c->argv[0], "increments")) { /* motion in steps of 1 cm and 5 degrees */
-		const char *on = cmd_key(c, "increments");
-		if (strcmp(on, "on") && strcmp(on, "off"))
-			return cmd_fail(c, "bad-argument", "increments=on|off");
-		manip_increments(&ia->m, !strcmp(on, "on"));
-		json_object_set_new(c->result, "increments", json_boolean(ia->m.increments));
-		return 0;
-	}
+	if (words_is_key(c->argv[0], "increments") || words_is_key(c->argv[0], "step") ||
+	    words_is_key(c->argv[0], "turn"))
+		return set_increments(c, ia);
 	enum manip_state st = ia->m.state;
 	if (st != MANIP_LINEAR && st != MANIP_ROTATE)
 		return cmd_fail(c, "bad-argument", "no axis is active: hold a button (CONTROL: a turn)");

@@ -14,6 +14,19 @@ interact_init(struct interact *ia)
 	memset(ia, 0, sizeof *ia);
 	ia->mode = INTERACT_NONE;
 	ia->fig = ia->view = -1;
+	ia->def = manip_default_def();
+}
+
+void
+interact_increments(struct interact *ia, int on, double step, double step_angle)
+{
+	ia->increments = !!on;
+	ia->def.step = step;
+	ia->def.step_angle = step_angle;
+	if (ia->mode == INTERACT_NONE)
+		return;
+	manip_steps(&ia->m, step, step_angle);
+	manip_increments(&ia->m, on);
 }
 
 /* the operator's message: the 20 degree rule's refusal, or nothing */
@@ -118,8 +131,8 @@ interact_start(struct interact *ia, enum interact_mode mode, int fig, int view,
 	ia->height = h;
 	ia->px = w * 0.5;
 	ia->py = h * 0.5;
-	struct manip_def def = manip_default_def();
-	manip_init(&ia->m, &def, g0, cam);
+	manip_init(&ia->m, &ia->def, g0, cam);
+	manip_increments(&ia->m, ia->increments);
 	/* the object in G's frame: obj = G * offset */
 	struct xform gi;
 	xform_inv(g0, &gi);

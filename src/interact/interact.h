@@ -64,6 +64,8 @@ struct interact {
 	struct camera cam;    /* the camera the operator last saw */
 	int width, height;
 	struct manip m;
+	struct manip_def def; /* the operator every mode starts with: increments' sizes ... */
+	int increments;       /* ... and whether they are on, kept from mode to mode */
 	struct xform offset;  /* the object in G's frame */
 	/* manipulating a joint: the figure (kin_update done), the joint, and what moved */
 	const struct model *model;
@@ -136,6 +138,12 @@ int interact_joint_rotation(const struct interact *ia);
 /* DOF dof of a figure as the mouse sees it now (kin_update done); see joint_manip.h */
 void interact_dof_view(const struct model *m, const struct state *s, int dof,
 		       struct joint_dof_view *dest);
+
+/*
+ * Increments on or off, and their sizes (metres, radians, > 0): for the
+ * mode running and every mode after it. A person sets them once.
+ */
+void interact_increments(struct interact *ia, int on, double step, double step_angle);
 
 void interact_end(struct interact *ia);
 

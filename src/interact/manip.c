@@ -500,6 +500,17 @@ manip_increments(struct manip *m, int on)
 	dispatch(m, IN_SCALE);
 }
 
+void
+manip_steps(struct manip *m, double step, double step_angle)
+{
+	if (m->step == step && m->step_angle == step_angle)
+		return;
+	m->step = step;
+	m->step_angle = step_angle;
+	if (m->increments)
+		dispatch(m, IN_SCALE);
+}
+
 int
 manip_ray(struct manip *m, const struct ray *r)
 {

@@ -187,6 +187,12 @@ void manip_camera(struct manip *m, const struct camera *cam);
 void manip_increments(struct manip *m, int on);
 
 /*
+ * The increments' sizes (metres, radians; both > 0): the motion so far is
+ * G's, the rest counts from here in the new steps, as when increments turn on.
+ */
+void manip_steps(struct manip *m, double step, double step_angle);
+
+/*
  * A value typed during a manipulation (Blender's way: "10cm", "-30deg"):
  * G is the chord's starting G moved exactly that far along the active axis
  * (LINEAR) or turned that far about it (ROTATE); the mouse goes on from

@@ -581,7 +581,7 @@ def test_increments_move_g_in_whole_centimetres(daemon):
     with daemon.client() as c:
         setup(c)
         c.request("manipulate figure human")
-        assert c.request("set manip increments=on") == {"increments": True}
+        assert c.request("set manip increments=on")["increments"] is True
         g0 = c.request("get manip")["position"]
         c.request("input pointer front 160 120")
         c.request("input button left down")
@@ -590,8 +590,51 @@ def test_increments_move_g_in_whole_centimetres(daemon):
             dx = c.request("get manip")["position"][0] - g0[0]
             assert dx == pytest.approx(round(dx * 100) / 100, abs=1e-12) and dx > 0
         c.request("input button left up")
-        assert c.request("set manip increments=off") == {"increments": False}
+        assert c.request("set manip increments=off")["increments"] is False
         assert c.request_reply("set manip increments=maybe")["error"]["code"] == "bad-argument"
+
+
+def test_increment_sizes_are_settable_and_kept_from_mode_to_mode(daemon):
+    """step= and turn= set the increments' sizes; set once (even with no mode), they hold
+    in every mode after: a drag goes in whole 2.5 cm steps, a turn in whole 15 degrees."""
+    with daemon.client() as c:
+        setup(c, eye="0,4,0.5", target="0,0,0")
+        reply = c.request("set manip increments=on step=2.5cm turn=15deg")
+        assert reply == {"increments": True, "step": pytest.approx(0.025, abs=1e-15),
+                         "turn": pytest.approx(math.radians(15), abs=1e-15)}
+        c.request("manipulate figure human")
+        g0 = c.request("get manip")
+        c.request("input pointer front 160 120")
+        c.request("input button left down")
+        seen = set()
+        for x in (175, 190, 215, 240):
+            c.request(f"input pointer front {x} 120")
+            dx = c.request("get manip")["position"][0] - g0["position"][0]
+            assert dx / 0.025 == pytest.approx(round(dx / 0.025), abs=1e-9)
+            seen.add(round(dx / 0.025))
+        assert len(seen) > 1
+        c.request("input button left up")
+        c.request("input key KEY_ESC down")
+        c.request("input key KEY_ESC up")
+        # a new mode: the wheel about y turns in whole 15 degree steps
+        c.request("manipulate figure human")
+        g0 = c.request("get manip")
+        c.request("input key KEY_LEFTCTRL down")
+        c.request("input pointer front 220 120")
+        c.request("input button middle down")
+        turns = set()
+        for x, y in ((200, 60), (160, 40), (110, 70)):
+            c.request(f"input pointer front {x} {y}")
+            r, r0 = c.request("get manip")["rotation"], g0["rotation"]
+            x_now, x_then = [r[i][0] for i in range(3)], [r0[i][0] for i in range(3)]
+            turn = math.degrees(math.acos(max(-1, min(1, dot(x_now, x_then)))))
+            assert turn / 15 == pytest.approx(round(turn / 15), abs=1e-6), turn
+            turns.add(round(turn / 15))
+        assert len(turns) > 1
+        c.request("input button middle up")
+        for bad in ("step=0", "step=20m", "turn=200deg", "turn=x", "speed=2"):
+            assert not c.request_reply(f"set manip {bad}")["ok"], bad
+        assert c.request("set manip increments=off")["step"] == pytest.approx(0.025, abs=1e-15)
 
 
 @pytest.mark.parametrize("what,site", [("head", "head.between_eyes"), ("eyes", "eyeball_l.gaze")])
