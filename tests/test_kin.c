@@ -7,6 +7,7 @@
 
 #include "test_util.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -332,6 +333,42 @@ test_builder_is_deterministic(void **unused)
 	model_free(b);
 }
 
+/*
+ * The rotation vector recovers axis times angle from a matrix built by
+ * Rodrigues' formula written out here, over the whole range of angles,
+ * those next to 0 and to pi included (where the antisymmetric part of the
+ * matrix fades and a naive log map loses its digits).
+ */
+static void
+test_rotation_vector_inverts_rodrigues(void **unused)
+{
+	(void)unused;
+	srand(11);
+	const double angles[] = { 1e-14, 1e-7, 0.3, 1.5, 3.0, M_PI - 1e-7, M_PI - 1e-12 };
+	for (int n = 0; n < 200; n++) {
+		double a[3], len = 0;
+		for (int i = 0; i < 3; i++) {
+			a[i] = 2.0 * rand() / RAND_MAX - 1;
+			len += a[i] * a[i];
+		}
+		len = sqrt(len);
+		for (int i = 0; i < 3; i++)
+			a[i] /= len;
+		double th = n < 7 ? angles[n] : M_PI * rand() / RAND_MAX;
+		double c = cos(th), s = sin(th), t = 1 - c, r[9], w[3];
+		double x = a[0], y = a[1], z = a[2];
+		double m[9] = { t * x * x + c,     t * x * y - s * z, t * x * z + s * y,
+				t * x * y + s * z, t * y * y + c,     t * y * z - s * x,
+				t * x * z - s * y, t * y * z + s * x, t * z * z + c };
+		memcpy(r, m, sizeof r);
+		mathx_rotation_vector(r, w);
+		/* near pi the axis's sign is free: w and -w are the same turn */
+		double sgn = w[0] * a[0] + w[1] * a[1] + w[2] * a[2] < 0 ? -1 : 1;
+		for (int i = 0; i < 3; i++)
+			assert_true(fabs(sgn * w[i] - a[i] * th) < 1e-9 + 1e-6 * (th > 3.1));
+	}
+}
+
 int
 main(void)
 {
@@ -342,6 +379,7 @@ main(void)
 		cmocka_unit_test(test_joint_direction_independent_of_root),
 		cmocka_unit_test(test_builder_rejects_bad_trees),
 		cmocka_unit_test(test_builder_is_deterministic),
+		cmocka_unit_test(test_rotation_vector_inverts_rodrigues),
 	};
 	return cmocka_run_group_tests_name("kin", tests, NULL, NULL);
 }

@@ -15,6 +15,7 @@
 #include "interact/pick.h"
 #include "interact/snap.h"
 #include "pose/behave.h"
+#include "pose/spine.h"
 
 /* the view a mode works through: view=NAME, else the first there is; -1 with the error set */
 static int
@@ -185,6 +186,9 @@ manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 		g = f->state->site_xf[behave_foot_site(b, side)];
 	} else if (kind == INTERACT_PELVIS) { /* the pelvis's frame: CONTROL and a button turn it */
 		g = f->state->site_xf[b->s_pelvis];
+	} else if (kind == INTERACT_TORSO) { /* on the chest, in the pelvis's axes: the bend's */
+		g = f->state->site_xf[b->s_pelvis];
+		memcpy(g.p, f->state->site_xf[b->s_chest].p, sizeof g.p);
 	} else if (kind == INTERACT_COM) { /* the centre of mass, in the world's axes */
 		kin_com(f->model, f->state);
 		xform_identity(&g);
@@ -206,8 +210,8 @@ manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 	c->d->interact->primitive = kind;
 	c->d->interact->side = side;
 	memcpy(c->d->interact->applied_r, g.r, sizeof g.r);
-	static const char *const names[] = { "hand", "foot", "com", "head", "eyes", "pelvis" };
-	mode_started(c, fig, names[kind], vw);
+	spine_totals(f->model, f->state, c->d->interact->torso0);
+	mode_started(c, fig, interact_primitive_to_str(kind), vw);
 	return 0;
 }
 
@@ -245,6 +249,12 @@ int
 cmd_manipulate_eyes(struct cmd_ctx *c)
 {
 	return manipulate_primitive(c, INTERACT_EYES);
+}
+
+int
+cmd_manipulate_torso(struct cmd_ctx *c)
+{
+	return manipulate_primitive(c, INTERACT_TORSO);
 }
 
 /*
@@ -454,10 +464,9 @@ cmd_get_manip(struct cmd_ctx *c)
 {
 	const struct interact *ia = c->d->interact;
 	int on = ia && ia->mode != INTERACT_NONE;
-	static const char *const primitives[] = { "hand", "foot", "com", "head", "eyes", "pelvis" };
 	json_object_set_new(c->result, "mode",
 			    json_string(on && ia->mode == INTERACT_PRIMITIVE
-						? primitives[ia->primitive]
+						? interact_primitive_to_str(ia->primitive)
 						: interact_mode_to_str(on ? ia->mode : INTERACT_NONE)));
 	if (!on) {
 		json_object_set_new(c->result, "view", json_null());

@@ -11,6 +11,7 @@
 #include "interact/obstruct.h"
 #include "interact/pick.h"
 #include "pose/behave.h"
+#include "pose/spine.h"
 
 void
 modes_init(struct modes *M, struct daemon *d, struct scene *scene,
@@ -291,6 +292,26 @@ modes_bring_into_view(struct modes *M, int v, const double p[3])
 		avoid_obstruction(M, v, p, M->interact.fig);
 }
 
+/*
+ * bend torso from G: G's turn since the mode began, in the pelvis's axes
+ * then (x left, y up, z forward), as a rotation vector: its x is flexion
+ * (+ forward), its y axial rotation (+ to the left) and its -z the lateral
+ * bend (+ to the left), added to the bend the spine had. One button turns
+ * about one axis, so each wheel drives one direction exactly.
+ */
+static void
+bend_torso(struct behave *b, struct env_figure *f, const struct interact *ia,
+	   const struct xform *g)
+{
+	double turn[9], w[3];
+	mathx_mat3_tmul(ia->applied_r, g->r, turn); /* G0^T G */
+	mathx_rotation_vector(turn, w);
+	double total[3] = { ia->torso0[SPINE_FLEX] + w[0], ia->torso0[SPINE_LAT] - w[2],
+			    ia->torso0[SPINE_AXIAL] + w[1] };
+	struct spine_flavor fl = spine_bend_from_waist();
+	behave_bend_torso(b, f->model, f->state, f->ik, total, &fl);
+}
+
 /* a primitive's goal from G, as its move command sets it (Table 5.2) */
 static void
 drive_primitive(struct modes *M, struct env_figure *f, struct interact *ia)
@@ -332,6 +353,9 @@ drive_primitive(struct modes *M, struct env_figure *f, struct interact *ia)
 	}
 	case INTERACT_EYES:
 		behave_move_eyes(b, f->ik, g.p);
+		break;
+	case INTERACT_TORSO:
+		bend_torso(b, f, ia, &g);
 		break;
 	}
 }

@@ -247,6 +247,23 @@ mathx_rot_y(double angle, double dest[9])
 		dest[i] = r[i];
 }
 
+/*
+ * The rotation vector of r (the log map): its axis times its angle, the
+ * angle in 0..pi. Through the quaternion, which stays well conditioned at
+ * every angle, where the matrix's antisymmetric part vanishes near pi.
+ */
+static inline void
+mathx_rotation_vector(const double r[9], double dest[3])
+{
+	double q[4];
+	mathx_mat_to_quat(r, q);
+	double s = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+	/* 2 atan2(s, w) / s, and its limit 2 / w as s goes to 0 */
+	double k = s > 1e-12 ? 2 * atan2(s, q[3]) / s : 2 / q[3];
+	for (int i = 0; i < 3; i++)
+		dest[i] = q[i] * k;
+}
+
 /* rotation angle (radians, 0..pi) between two rotation matrices */
 static inline double
 mathx_rot_angle_between(const double a[9], const double b[9])

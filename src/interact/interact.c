@@ -281,3 +281,10 @@ interact_mode_to_str(enum interact_mode m)
 	}
 	return "none";
 }
+
+const char *
+interact_primitive_to_str(enum interact_primitive p)
+{
+	static const char *const names[] = { "hand", "foot", "com", "head", "eyes", "pelvis", "torso" };
+	return (unsigned)p < sizeof names / sizeof *names ? names[p] : "none";
+}

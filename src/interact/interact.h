@@ -43,6 +43,7 @@ enum interact_primitive {
 	INTERACT_HEAD, /* move head: G is the point the head fixates */
 	INTERACT_EYES, /* move eyes: G is the point the eyes fixate */
 	INTERACT_PELVIS, /* rotate pelvis: G's turns turn the pelvis relative to the feet */
+	INTERACT_TORSO,  /* bend torso: G's turn in the pelvis's axes is the spine's bend */
 };
 
 /* what interact_input did */
@@ -75,7 +76,9 @@ struct interact {
 	int site;             /* INTERACT_SITE: the site G carries */
 	enum interact_primitive primitive; /* INTERACT_PRIMITIVE: which, and the side */
 	int side;
-	double applied_r[9];  /* INTERACT_PELVIS: G's rotation the pelvis has been turned to */
+	double applied_r[9];  /* INTERACT_PELVIS: G's rotation the pelvis has been turned to;
+			       * INTERACT_TORSO: G's rotation when the mode began */
+	double torso0[3];     /* INTERACT_TORSO: the spine's bend (flexion, lateral, axial) then */
 	int moved_dof;        /* INTERACT_MOVED in joint mode: this DOF (model index) ... */
 	double moved_value;   /* ... takes this value */
 	char message[INTERACT_MESSAGE_MAX];
@@ -148,5 +151,7 @@ void interact_increments(struct interact *ia, int on, double step, double step_a
 void interact_end(struct interact *ia);
 
 const char *interact_mode_to_str(enum interact_mode m);
+/* "hand", "foot", "com", "head", "eyes", "pelvis", "torso": as the modes are named */
+const char *interact_primitive_to_str(enum interact_primitive p);
 
 #endif
