@@ -17,6 +17,8 @@
 #include <string.h>
 
 #include "draw/hemi.h"
+#include "figure/human.h"
+#include "figure/kin.h"
 #include "interact/obstruct.h"
 #include "interact/view_adjust.h"
 #include "interact/viewop.h"
@@ -212,6 +214,51 @@ test_turn_to(void **state)
 	assert_int_equal(va.active, 0);
 }
 
+/*
+ * The parts left out around G: the segment and those that share a joint
+ * with it, found here from the model's joints (the figure file's pairs of
+ * sites), not from the posture's tree the code walks; under any rooting.
+ */
+static void
+test_own_parts_are_the_segment_and_its_joint_neighbours(void **state)
+{
+	(void)state;
+	char err[200];
+	struct human_def hd = human_default_def(HUMAN_MALE);
+	struct model *m = human_build(&hd, err, sizeof err);
+	assert_non_null(m);
+	struct state *s = state_make(m);
+	kin_update(m, s);
+	unsigned char skip[256];
+	const char *roots[] = { "foot_l.balance", "hand_r.palm", "head.between_eyes" };
+	const char *segs[] = { "hand_r", "pelvis", "forearm_l", "head" };
+	for (int r = 0; r < 3; r++) {
+		kin_set_root(m, s, model_find_site(m, roots[r]));
+		for (int k = 0; k < 4; k++) {
+			int seg = model_find_segment(m, segs[k]);
+			assert_true(seg >= 0);
+			int n = obstruct_own_parts(m, s, seg, skip, 256), want = 1;
+			for (int i = 0; i < m->nseg; i++) {
+				int near = i == seg;
+				for (int j = 0; j < m->njnt; j++) {
+					int a = m->site_seg[m->jnt_site_from[j]], b = m->site_seg[m->jnt_site_to[j]];
+					near |= (a == seg && b == i) || (b == seg && a == i);
+				}
+				assert_int_equal(skip[i], near);
+				want += near && i != seg;
+			}
+			assert_int_equal(n, want);
+			assert_true(n >= 2);
+		}
+	}
+	/* more segments than the caller has room for: nothing written */
+	memset(skip, 7, sizeof skip);
+	assert_int_equal(obstruct_own_parts(m, s, 0, skip, m->nseg - 1), -1);
+	assert_int_equal(skip[0], 7);
+	state_free(s);
+	model_free(m);
+}
+
 int
 main(void)
 {
@@ -223,6 +270,7 @@ main(void)
 		cmocka_unit_test(test_blocked_everywhere),
 		cmocka_unit_test(test_map_pixels),
 		cmocka_unit_test(test_turn_to),
+		cmocka_unit_test(test_own_parts_are_the_segment_and_its_joint_neighbours),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -248,11 +248,29 @@ maybe_adjust_view(struct modes *M, const struct camera *cam)
 }
 
 /*
- * §3.7.1: the visibility map from p towards view v's camera, figure slot
- * skip left out (the manipulated figure's own body surrounds its origin:
- * it would hide every direction); when something nearer than the eye
- * hides p, the eye turns about p to the nearest clear direction, eased
- * like the other adjustments, remembered for C, journaled at the end.
+ * The segment G sits on, whose neighbourhood is left out of the map: the
+ * dragged site's or the moved site's. -1 when the whole figure goes (a
+ * figure moved as a whole surrounds its origin; it is the object).
+ */
+static int
+g_segment(const struct modes *M)
+{
+	const struct interact *ia = &M->interact;
+	const struct env *e = &M->d->env;
+	if (ia->mode == INTERACT_SITE)
+		return e->fig[ia->fig].model->site_seg[ia->site];
+	if (ia->mode == INTERACT_DRAG && ia->con >= 0)
+		return e->fig[ia->fig].model->site_seg[e->con[ia->con].def.effector_site];
+	return -1;
+}
+
+/*
+ * §3.7.1: the visibility map from p towards view v's camera, with the
+ * manipulated figure skip's parts around G left out (they surround its
+ * origin and would hide every direction; the rest of its body can hide
+ * G like any other figure); when something nearer than the eye hides p,
+ * the eye turns about p to the nearest clear direction, eased like the
+ * other adjustments, remembered for C, journaled at the end.
  */
 static void
 avoid_obstruction(struct modes *M, int v, const double p[3], int skip)
@@ -266,7 +284,12 @@ avoid_obstruction(struct modes *M, int v, const double p[3], int skip)
 	char err[256];
 	if (!(dist > HEMI_ZNEAR))
 		return;
-	const struct hemi_map *m = scene_hemicube(M->scene, M->d, p, d, skip, err, sizeof err);
+	const unsigned char *own = NULL;
+	int seg = skip >= 0 && M->interact.fig == skip ? g_segment(M) : -1;
+	if (seg >= 0 && obstruct_own_parts(M->d->env.fig[skip].model, M->d->env.fig[skip].state,
+					   seg, M->own_parts, MODES_MAX_SEGMENTS) >= 0)
+		own = M->own_parts;
+	const struct hemi_map *m = scene_hemicube(M->scene, M->d, p, d, skip, own, err, sizeof err);
 	if (!m)
 		return;
 	if (obstruct_check(m, dist, OBSTRUCT_CONE, dir) == 1 &&

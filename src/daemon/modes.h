@@ -23,6 +23,9 @@
 #define MODES_VIEW_UNDO 8      /* automatic view changes remembered per view */
 #define MODES_EDGE_MARGIN 0.1  /* a dragged G this near the picture's edge: the view follows */
 
+/* the segments a figure may have for its own body to obstruct (more: all of it is left out) */
+#define MODES_MAX_SEGMENTS 1024
+
 struct modes {
 	struct daemon *d;
 	struct scene *scene; /* its dirty flag: a picture changed */
@@ -35,6 +38,7 @@ struct modes {
 	struct camera undo_view[ENV_MAX_VIEWS][MODES_VIEW_UNDO];
 	int nundo_view[ENV_MAX_VIEWS];
 	int pointer_view;                      /* the view the pointer was last in, -1: none yet */
+	unsigned char own_parts[MODES_MAX_SEGMENTS]; /* §3.7.1: the parts around G, left out */
 	double pointer_x, pointer_y;
 };
 

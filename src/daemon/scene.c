@@ -110,7 +110,7 @@ figure_meshes(struct scene *sc, const struct env_figure *f, int i)
 
 const struct hemi_map *
 scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3], const double dir[3],
-	       int skip, char *err, size_t errlen)
+	       int skip, const unsigned char *skip_seg, char *err, size_t errlen)
 {
 	struct env *e = &d->env;
 	struct camera cam;
@@ -123,10 +123,11 @@ scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3], const
 	view_begin(sc->dl, &cam, HEMI_N, HEMI_N);
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
 		struct env_figure *f = &e->fig[i];
-		if (!f->gen || i == skip)
+		if (!f->gen || (i == skip && !skip_seg))
 			continue;
 		figure_meshes(sc, f, i);
-		view_add_figure_ids(sc->dl, f->model, f->state, sc->mesh_base[i], i);
+		view_add_figure_ids_except(sc->dl, f->model, f->state, sc->mesh_base[i], i,
+					   i == skip ? skip_seg : NULL);
 	}
 	if (render_hemicube(sc->r, sc->dl, sc->hemi) < 0) {
 		snprintf(err, errlen, "render_hemicube failed");

@@ -47,12 +47,14 @@ int scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **d
 
 /*
  * §3.7.1's visibility map from origin towards dir (the camera) over the
- * environment's figures, figure slot skip left out (-1: none), into the
- * scene's own map (valid until the next call). Returns it, or NULL with
- * err when there is no renderer or no direction.
+ * environment's figures, into the scene's own map (valid until the next
+ * call). Of figure slot skip (-1: none), the segments whose skip_seg[seg]
+ * is set are left out, or the whole figure when skip_seg is NULL. Returns
+ * it, or NULL with err when there is no renderer or no direction.
  */
 const struct hemi_map *scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3],
-				      const double dir[3], int skip, char *err, size_t errlen);
+				      const double dir[3], int skip, const unsigned char *skip_seg,
+				      char *err, size_t errlen);
 
 /*
  * After a frame that changed something: every view drawn, written and sent

@@ -281,11 +281,13 @@ view_mesh_tess(enum view_mesh k, int fine, struct tess_mesh *dest)
 /* the instances of m's geoms; fig < 0: coloured by segment with shadows, else flat id colours */
 static int
 add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base,
-	   int fig)
+	   int fig, const unsigned char *skip_seg)
 {
 	int before = dl->ninst;
 	for (int g = 0; g < m->ngeom; g++) {
 		int seg = m->geom_seg[g];
+		if (skip_seg && skip_seg[seg])
+			continue;
 		float idc[4];
 		const float *rgba = &m->seg_rgba[4 * seg];
 		if (fig >= 0) {
@@ -315,7 +317,7 @@ add_figure(struct drawlist *dl, const struct model *m, const struct state *s, in
 int
 view_add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base)
 {
-	return add_figure(dl, m, s, mesh_base, -1);
+	return add_figure(dl, m, s, mesh_base, -1, NULL);
 }
 
 uint32_t
@@ -338,7 +340,14 @@ int
 view_add_figure_ids(struct drawlist *dl, const struct model *m, const struct state *s,
 		    int mesh_base, int fig)
 {
-	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig);
+	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, NULL);
+}
+
+int
+view_add_figure_ids_except(struct drawlist *dl, const struct model *m, const struct state *s,
+			   int mesh_base, int fig, const unsigned char *skip_seg)
+{
+	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, skip_seg);
 }
 
 /* ---- lines, triangles and text --------------------------------------------- */

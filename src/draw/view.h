@@ -225,6 +225,10 @@ void view_id_rgba(uint32_t id, float dest[4]);
 /* the figure as view_add_figure places it, each geom in its flat id colour, no shadows */
 int view_add_figure_ids(struct drawlist *dl, const struct model *m, const struct state *s,
 			int mesh_base, int fig);
+/* the same with the segments whose skip_seg[seg] is set left out (the parts around a point
+ * the map is made from: §3.7.1's own body) */
+int view_add_figure_ids_except(struct drawlist *dl, const struct model *m, const struct state *s,
+			       int mesh_base, int fig, const unsigned char *skip_seg);
 
 /* one instance; mat is column-major; returns its index or -1 when full */
 int view_add_instance(struct drawlist *dl, int mesh, const float mat[16], const float rgba[4],

@@ -92,3 +92,17 @@ obstruct_check(const struct hemi_map *m, double eye_dist, double cone, double de
 	hemi_pixel_dir(m, bx, by, dest);
 	return 1;
 }
+
+int
+obstruct_own_parts(const struct model *m, const struct state *s, int seg, unsigned char *skip,
+		   int cap)
+{
+	if (m->nseg > cap || seg < 0 || seg >= m->nseg)
+		return -1;
+	int n = 0;
+	for (int k = 0; k < m->nseg; k++) {
+		skip[k] = k == seg || s->seg_parent[k] == seg || s->seg_parent[seg] == k;
+		n += skip[k];
+	}
+	return n;
+}

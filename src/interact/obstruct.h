@@ -21,6 +21,8 @@
 #define POSTURE_INTERACT_OBSTRUCT_H
 
 #include "draw/hemi.h"
+#include "figure/model.h"
+#include "figure/state.h"
 
 #define OBSTRUCT_CONE (3.0 * M_PI / 180) /* half angle kept clear about the line of sight */
 /* a pixel's half diagonal at the map's centre: how far a blocked pixel reaches past its centre */
@@ -34,5 +36,16 @@
  * map is clear (dest untouched).
  */
 int obstruct_check(const struct hemi_map *m, double eye_dist, double cone, double dest[3]);
+
+/*
+ * The figure's own body is an obstacle too (a hand dragged behind the
+ * back is hidden by the torso), except the parts that surround the
+ * origin: the segment it is on and the segments jointed to it, from
+ * whose inside every direction would look blocked. Sets skip[k] for
+ * those segments of m (posture s), clears the others. Returns how many
+ * are set, or -1 when m has more than cap segments (skip untouched).
+ */
+int obstruct_own_parts(const struct model *m, const struct state *s, int seg, unsigned char *skip,
+		       int cap);
 
 #endif

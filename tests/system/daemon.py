@@ -238,3 +238,14 @@ def wait_closed(client, timeout=5.0):
 __all__ = ["Daemon", "DaemonError", "daemon", "daemon_factory", "snapshot", "wait_closed",
            "free_tcp_port", "Client", "PostureError", "ConnectionClosed", "ROOT", "BUILD",
            "POSTURED"]
+
+
+def write_picture(client, view, name):
+    """Renders a view now and writes it to the test output ($POSTURE_BUILD/test-output/NAME),
+    where a person looks at what a scenario did. Returns the PNG's bytes."""
+    import base64
+    data = base64.b64decode(client.request(f"render view {view}")["png"])
+    out = pathlib.Path(os.environ.get("POSTURE_BUILD", "build/rel")) / "test-output"
+    out.mkdir(parents=True, exist_ok=True)
+    (out / name).write_bytes(data)
+    return data

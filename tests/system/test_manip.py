@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from daemon import daemon, daemon_factory, snapshot  # noqa: F401 (fixtures)
+from daemon import daemon, daemon_factory, snapshot, write_picture  # noqa: F401 (fixtures)
 
 
 def sub(a, b):
@@ -61,6 +61,7 @@ def test_a_drag_along_x_follows_the_nearest_point_and_moves_the_figure(daemon):
         assert moved["position"][0] == pytest.approx(p0[0] + want, abs=1e-9)
         assert moved["position"][1:] == pytest.approx(p0[1:], abs=1e-12)
         assert abs(want) > 0.1
+        write_picture(c, "front", "manip_figure_linear.png")
         # the figure's root went with G
         root = c.request("show figure human")["root"]
         site = c.request(f"get site human {root}")
@@ -246,6 +247,7 @@ def test_dragging_a_hand_the_solver_follows_g_and_esc_ends_it(daemon):
         g = c.request("get manip")
         assert g["position"][0] == pytest.approx(target_x, abs=0.01)
         c.request("settle frames=60")
+        write_picture(c, "front", "manip_drag_hand.png")
         hand = site_pos(c, "hand_r.palm")
         assert math.dist(hand, g["position"]) < 0.002, (hand, g["position"])
         c.request("input button left up")
@@ -303,6 +305,7 @@ def crank_elbow(c, pixels):
     for x, y in pixels[1:]:
         c.request(f"input pointer side {x} {y}")
     after = c.request("get joint human elbow_r")["values"][0]
+    write_picture(c, "side", "manip_joint_elbow.png")
     c.request("input button left up")
     c.request("input key KEY_ESC down")
     return pivot, before, after
@@ -479,6 +482,7 @@ def test_a_primitive_s_goal_follows_g_and_the_behaviours_respond(daemon, primiti
         g = drag_x(c, dx)
         assert g[0] - g0[0] == pytest.approx(dx, abs=0.01)
         c.request("settle frames=120")
+        write_picture(c, "front", f"manip_primitive_{primitive.split()[0]}.png")
         now = site_pos(c, site)  # a site of the moved limb goes as far as G
         assert (now[0] - start[0]) == pytest.approx(g[0] - g0[0], abs=0.01), (now, start, g, g0)
         assert c.request("get behavior human")["balance"]["margin"] > 0
@@ -532,6 +536,7 @@ def test_snapping_onto_what_is_under_the_pointer(daemon_factory):
         c.request("input pointer front %d %d" % (px, py))
         before = c.request("get manip")["position"]
         snapped = c.request("snap face_plane")["position"]
+        write_picture(c, "front", "manip_snap_face_plane.png")
         n = hit["normal"]
         assert dot(sub(snapped, hit["point"]), n) == pytest.approx(0, abs=1e-9)
         moved = sub(snapped, before)
@@ -648,6 +653,7 @@ def test_the_head_and_the_eyes_fixate_g(daemon, what, site):
         assert c.request(f"manipulate {what} human")["mode"] == what
         g = drag_x(c, 0.3)
         c.request("settle frames=120")
+        write_picture(c, "front", f"manip_{what}.png")
         s = c.request(f"get site human {site}")
         r = s["rotation"]  # row-major 3x3: the +z axis is the third column
         z = [r[2], r[5], r[8]]
@@ -675,6 +681,7 @@ def test_turning_the_pelvis_with_the_wheel(daemon):
         assert c.request("get manip")["state"] == "rotate"
         c.request("set manip 25deg")
         c.request("settle frames=120")
+        write_picture(c, "front", "manip_pelvis.png")
         turned = h0 - heading()  # +25 about y turns x towards -z: atan2(r6, r0) falls
         assert turned == pytest.approx(25, abs=3)
 

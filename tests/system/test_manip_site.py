@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from daemon import daemon, daemon_factory  # noqa: F401 (fixtures)
+from daemon import daemon, daemon_factory, write_picture  # noqa: F401 (fixtures)
 from test_manip import drag_x, setup
 
 
@@ -89,6 +89,7 @@ def test_a_dragged_site_follows_g_on_its_segment_and_survives_a_kill(daemon):
         g = drag_x(c, -0.04)
         assert g[0] - g0["position"][0] == pytest.approx(-0.04, abs=0.01)
         moved = site(c, "hand_r.palm")[:3]
+        write_picture(c, "front", "manip_site.png")
         assert moved == pytest.approx(g, abs=1e-9)
         assert site(c, "hand_r.fingertip") == pytest.approx(wrist, abs=1e-12)
         c.request("input key KEY_ESC down")

@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from daemon import daemon, daemon_factory  # noqa: F401 (fixtures)
+from daemon import daemon, daemon_factory, write_picture  # noqa: F401 (fixtures)
 
 
 def spine_totals(c, fig):
@@ -39,6 +39,7 @@ def test_a_turn_of_g_bends_the_torso_as_bend_torso_does(daemon, button, directio
         manip = c.request("get manip")
         assert manip["state"] == "rotate", manip
         c.request("set manip 12deg")
+        write_picture(c, "side", f"manip_torso_{button}.png")
         c.request(f"input button {button} up")
         c.request("input key KEY_ESC down")
         # the same totals by command on b: flexion about x, axial about y, lateral about -z

@@ -6,7 +6,7 @@ import time
 
 import pytest
 
-from daemon import ROOT, daemon_factory  # noqa: F401 (fixture)
+from daemon import ROOT, daemon_factory, write_picture  # noqa: F401 (fixture)
 
 # lib:box.fig is 40 x 25 x 30 cm (x, y, z) standing on its base; set where it stands
 WALL_AT = (0.0, 0.85, 1.5)
@@ -46,6 +46,19 @@ def turned(c, g, before, limit=3):
     return v
 
 
+def settled(c, limit=3):
+    """the view once its camera has stopped moving (or as it is after limit s)"""
+    t0 = time.monotonic()
+    v = front(c)
+    while time.monotonic() - t0 < limit:
+        time.sleep(0.25)
+        now = front(c)
+        if now == v:
+            break
+        v = now
+    return v
+
+
 def test_a_wall_between_camera_and_g_is_avoided(daemon_factory):
     library = ["--library", str(ROOT / "src" / "figure" / "library")]
     with daemon_factory(extra=library).client() as c:
@@ -60,6 +73,7 @@ def test_a_wall_between_camera_and_g_is_avoided(daemon_factory):
         v = turned(c, g, before)
         assert v["target"] == pytest.approx(g, abs=1e-6)  # it ends aimed at G
         assert not hits_box(v["eye"], g, WALL_LO, WALL_HI)  # and sees it past the wall
+        write_picture(c, "front", "obstruct_wall.png")
         dist = lambda e: sum((x - y) ** 2 for x, y in zip(e, g)) ** 0.5  # noqa: E731
         assert dist(v["eye"]) == pytest.approx(dist(before["eye"]), abs=1e-6)  # turned about G
         # a slight turn (§3.9), not a jump to the other side
@@ -134,3 +148,29 @@ def test_a_clear_view_is_left_alone(daemon_factory):
         c.request("input button left up")
         time.sleep(0.3)
         assert front(c)["eye"] == pytest.approx(before["eye"], abs=1e-9)
+
+
+def test_the_figure_s_own_body_hiding_a_dragged_hand_is_avoided(daemon_factory):
+    """A hand dragged where the figure's own hips hide it from the camera: the parts around
+    G (the hand and the forearm) are left out of the map, the rest of the body is not, so
+    the view turns. Hidden or seen is judged by `pick` (triangles along the mouse line
+    through the view's centre, where G is: the view aims at it), not by the map."""
+    with daemon_factory().client() as c:
+        c.request("load human as human")
+        palm = c.request("get site human hand_r.palm")["position"]
+        # behind the figure and to its left, level with the hand: the hips in between
+        eye = [palm[0] + 2.6, palm[1] + 0.1, palm[2] - 1.3]
+        c.request("add view front width=320 height=240 eye=%g,%g,%g target=%g,%g,%g"
+                  % (*eye, *palm))
+        before = front(c)
+        first = c.request("pick front 160 120")["hit"]
+        assert first["segment"] not in ("hand_r", "forearm_r"), first  # the body hides it
+        c.request("drag human hand_r.palm start=shoulder_r view=front")
+        g = c.request("get manip")["position"]
+        v = settled(c)
+        assert v["target"] == pytest.approx(g, abs=1e-6)
+        assert v["eye"] != pytest.approx(before["eye"], abs=1e-3), "the view did not turn"
+        seen = c.request("pick front 160 120")["hit"]
+        write_picture(c, "front", "obstruct_own_body.png")
+        assert seen["segment"] in ("hand_r", "forearm_r"), seen
+        c.request("input key KEY_ESC down")

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from daemon import daemon, daemon_factory, snapshot  # noqa: F401 (fixtures)
+from daemon import daemon, daemon_factory, snapshot, write_picture  # noqa: F401 (fixtures)
 
 
 def view(c, name):
@@ -32,6 +32,8 @@ def test_a_left_sweep_turns_the_camera_about_the_vertical_through_the_reference_
         assert v["eye"] == pytest.approx([3 * math.sin(a), 1, 3 * math.cos(a)], abs=1e-9)
         assert v["target"] == pytest.approx([0, 1, 0], abs=1e-9)
         key(c, "KEY_ESC")
+        c.request("load human as human")
+        write_picture(c, "front", "viewctl_sweep.png")
         kept = view(c, "front")
         assert kept["eye"] == pytest.approx(v["eye"], abs=1e-9)
     daemon.kill9()
@@ -95,3 +97,4 @@ def test_s_snaps_the_reference_point_to_what_is_picked(daemon):
                 break
             time.sleep(0.05)
         assert view(c, "front")["target"] == pytest.approx(hit["point"], abs=1e-6)
+        write_picture(c, "front", "viewctl_snap.png")
