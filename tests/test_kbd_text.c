@@ -270,7 +270,7 @@ test_fr_letters(void **unused)
 {
 	(void)unused;
 	struct kbd_text *kt = make("fr");
-	/* KEY_Q = 16 is <AD01>; symbols/fr:21 [ a, A, ae, AE ]; KEY_A is <AC01>, fr:27 [ q, ... ] */
+	/* KEY_Q = 16 is <AD01>, symbols/fr:21 [ a, A, ae, AE ]; KEY_A <AC01>, fr:27 [ q, Q ... ] */
 	assert_string_equal(typed(kt, KEY_Q), "a");
 	assert_string_equal(typed(kt, KEY_A), "q");
 	kbd_text_free(kt);

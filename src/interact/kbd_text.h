@@ -83,7 +83,7 @@ struct kbd_text_def {
 	const char *layout;   /* "us"; "de", "fr", or several: "us,de" */
 	const char *variant;  /* "" or e.g. "nodeadkeys" */
 	const char *options;  /* "" or e.g. "compose:ralt" */
-	const char *locale;   /* the compose table's locale: "C.UTF-8" (en_US.UTF-8 if it has none) */
+	const char *locale;   /* the compose table's: "C.UTF-8" (en_US.UTF-8 if it has none) */
 };
 
 /* pc105, us, no variant, no options, C.UTF-8 */
