@@ -9,8 +9,11 @@ SHELL   := /bin/bash
 CC      ?= cc
 CFLAGS  ?= -O2 -g
 WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -I/usr/include/libusb-1.0 -MMD -MP
-LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -ludev -lhidapi-hidraw -lusb-1.0 -lm
+# libxkbcommon through pkg-config; before `make deps` has installed it, its plain name
+XKB_CFLAGS := $(shell pkg-config --cflags xkbcommon 2>/dev/null)
+XKB_LIBS := $(shell pkg-config --libs xkbcommon 2>/dev/null || echo -lxkbcommon)
+BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -I/usr/include/libusb-1.0 $(XKB_CFLAGS) -MMD -MP
+LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -ludev -lhidapi-hidraw -lusb-1.0 $(XKB_LIBS) -lm
 TESTLIBS := -lcmocka -lnlopt
 # NLopt is the independent minimiser the IK tests and benchmarks compare against;
 # only tests and benchmarks link it
@@ -23,7 +26,8 @@ VENV    := .venv
 PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
-	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils
+	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils \
+	libxkbcommon-dev xkb-data libx11-data
 # without their recommends: QEMU boots the kernel test tier's guest (tests/guest)
 DEB_PKGS_LEAN := qemu-system-x86
 
