@@ -61,6 +61,53 @@ lookup(struct cmd_ctx *c, const struct words *w, int *first_arg)
 	return NULL;
 }
 
+/* 1 when word (or what follows its '=', or what precedes its first '.') names figure slot fig */
+static int
+names_figure(const struct env *e, const char *word, int fig)
+{
+	const char *eq = strchr(word, '=');
+	const char *w = eq ? eq + 1 : word;
+	char head[MODEL_NAME_MAX];
+	int slot = env_find_figure(e, w);
+	if (slot < 0) {
+		const char *dot = strchr(w, '.');
+		size_t n = dot ? (size_t)(dot - w) : 0;
+		if (n && n < sizeof head) {
+			memcpy(head, w, n);
+			head[n] = '\0';
+			slot = env_find_figure(e, head);
+		}
+	}
+	if (slot < 0 && (slot = env_find_constraint(e, w)) >= 0)
+		slot = e->con[slot].fig;
+	return slot == fig;
+}
+
+/*
+ * The busy rule (issue 14): while the kiosk is in a step (a drag under
+ * way), a client's change to the figure it moves is refused, with the
+ * kiosk's mode named, and so is any change of the whole environment
+ * (undo, redo, a session loaded); reads, events and other figures go on.
+ */
+static int
+busy_with_step(struct daemon *d, const struct cmd_entry *e, struct cmd_ctx *c)
+{
+	const struct daemon_step *st = &d->step;
+	if (!st->open || st->fig < 0 || st->fig >= ENV_MAX_FIGURES || d->env.fig[st->fig].gen != st->gen)
+		return 0;
+	const char *name = d->env.fig[st->fig].name;
+	int whole = e->fn == cmd_undo || e->fn == cmd_redo || e->fn == cmd_load_session;
+	int touches = whole;
+	for (int i = 0; i < c->argc && !touches; i++)
+		touches = names_figure(&d->env, c->argv[i], st->fig);
+	if (!touches)
+		return 0;
+	snprintf(c->msg, sizeof c->msg,
+		 "the kiosk is moving %s (%s mode, a button held): %s waits until it comes up",
+		 name, st->mode, whole ? "a change of the whole environment" : "a change to it");
+	return 1;
+}
+
 static char *
 dump_reply(int ok, const char *tag, json_t *result, const char *code, const char *msg)
 {
@@ -144,6 +191,10 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	c.argv = w.w + first;
 	if (c.argc < e->min_args || c.argc > e->max_args) {
 		out->json = dump_reply(0, w.tag, NULL, "arity", e->usage);
+		return;
+	}
+	if (c.client >= 0 && (e->flags & CMD_MUTATES) && busy_with_step(d, e, &c)) {
+		out->json = dump_reply(0, w.tag, NULL, "busy", c.msg);
 		return;
 	}
 	/* a checkpoint for undo, taken before the change */

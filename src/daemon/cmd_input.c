@@ -228,13 +228,22 @@ cmd_list_devices(struct cmd_ctx *c)
 int
 cmd_set_input(struct cmd_ctx *c)
 {
-	if (!c->d->set_input)
-		return cmd_fail(c, "bad-argument", "this daemon reads no devices");
 	for (int i = 0; i < c->argc; i++)
-		if (strncmp(c->argv[i], "grab=", 5) && strncmp(c->argv[i], "gain=", 5))
-			return cmd_fail(c, "bad-argument", "grab=yes|no or gain=G, not '%.40s'",
+		if (strncmp(c->argv[i], "grab=", 5) && strncmp(c->argv[i], "gain=", 5) &&
+		    strncmp(c->argv[i], "held=", 5))
+			return cmd_fail(c, "bad-argument", "grab=yes|no, gain=G or held=SECONDS, not '%.40s'",
 					c->argv[i]);
-	const char *g = cmd_key(c, "grab"), *k = cmd_key(c, "gain");
+	const char *g = cmd_key(c, "grab"), *k = cmd_key(c, "gain"), *h = cmd_key(c, "held");
+	double held = 0;
+	if (h && (words_number(h, UNIT_NONE, &held) < 0 || !(held >= 1 && held <= 3600)))
+		return cmd_fail(c, "bad-argument", "held is seconds, from 1 to 3600");
+	if ((g || k) && !c->d->set_input)
+		return cmd_fail(c, "bad-argument", "this daemon reads no devices");
+	if (h)
+		c->d->held_max_us = (uint64_t)(held * 1e6);
+	json_object_set_new(c->result, "held", json_real((double)c->d->held_max_us / 1e6));
+	if (!g && !k)
+		return 0;
 	int grab = -1;
 	double gain = 0;
 	if (g) {

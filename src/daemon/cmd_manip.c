@@ -17,6 +17,23 @@
 #include "pose/behave.h"
 #include "pose/spine.h"
 
+/*
+ * G was set by a command (a snap, a typed value): what the mode moves
+ * follows, as one step of its own (one undo) unless a drag is under way.
+ */
+static void
+moved_as_step(struct cmd_ctx *c)
+{
+	struct daemon *d = c->d;
+	int own = d->mode_step && !d->step.open;
+	if (own)
+		d->mode_step(d, 'B');
+	if (d->mode_moved)
+		d->mode_moved(d);
+	if (own)
+		d->mode_step(d, 'E');
+}
+
 /* the view a mode works through: view=NAME, else the first there is; -1 with the error set */
 static int
 manip_view(struct cmd_ctx *c)
@@ -262,7 +279,9 @@ cmd_manipulate_torso(struct cmd_ctx *c)
  * G by a constraint named "drag" (position and orientation, the chain from
  * the site up to JOINT, or to the root), which the solver satisfies each
  * frame within its time limit; G starts on the site. ESC ends the drag and
- * deletes the constraint; the posture stays.
+ * deletes the constraint; the posture stays. The constraint is the mode's
+ * (transient): sessions and undo leave it out, each step of the drag is
+ * journaled as the postures it reached.
  */
 int
 cmd_drag(struct cmd_ctx *c)
@@ -272,6 +291,8 @@ cmd_drag(struct cmd_ctx *c)
 		return -1;
 	struct env *e = &c->d->env;
 	struct env_figure *f = &e->fig[fig];
+	if (c->client < 0) /* an older journal's drag: its postures are journaled, not its mode */
+		return 0;
 	struct ik_constraint_def def = ik_constraint_default_def();
 	if ((def.effector_site = model_find_site(f->model, c->argv[1])) < 0)
 		return cmd_fail(c, "not-found", "no site '%.60s' on %s", c->argv[1], f->name);
@@ -289,8 +310,7 @@ cmd_drag(struct cmd_ctx *c)
 	int slot = env_add_constraint(e, fig, CMD_DRAG_CONSTRAINT, &def);
 	if (slot < 0)
 		return cmd_fail(c, "limit", "%d constraints at most", ENV_MAX_CONSTRAINTS);
-	if (c->client < 0) /* replaying the journal: the constraint, not a mode nobody drives */
-		return 0;
+	e->con[slot].transient = 1; /* the mode's: what it moves is journaled, not the constraint */
 	struct camera cam;
 	const struct env_view *vw = mode_camera(c, v, &cam);
 	interact_start(c->d->interact, INTERACT_DRAG, fig, v, &def.goal_xf, &def.goal_xf, &cam,
@@ -347,8 +367,7 @@ cmd_snap(struct cmd_ctx *c)
 	if (snap_apply((enum snap_kind)kind, &f, &ia->m.g, &g) < 0)
 		return cmd_fail(c, "bad-argument", "no %s to snap to there", c->argv[0]);
 	manip_set(&ia->m, &g);
-	if (c->d->mode_moved)
-		c->d->mode_moved(c->d);
+	moved_as_step(c);
 	char id[32];
 	env_figure_id(e, hit_fig, id);
 	json_object_set_new(c->result, "snapped", json_string(c->argv[0]));
@@ -414,8 +433,7 @@ cmd_set_manip(struct cmd_ctx *c)
 		if (words_number(c->argv[0], rot ? UNIT_ANGLE : UNIT_LENGTH, &typed) < 0)
 			return cmd_fail(c, "bad-number", "%s", rot ? "an angle (-30deg)" : "a length (2cm)");
 		interact_joint_type(ia, typed);
-		if (c->d->mode_moved)
-			c->d->mode_moved(c->d);
+		moved_as_step(c);
 		json_object_set_new(c->result, "value", json_real(ia->moved_value));
 		return 0;
 	}
@@ -431,8 +449,7 @@ cmd_set_manip(struct cmd_ctx *c)
 									  : "an angle (-30deg)");
 	if (manip_type(&ia->m, v) < 0)
 		return cmd_fail(c, "bad-argument", "not a value for this axis");
-	if (c->d->mode_moved)
-		c->d->mode_moved(c->d);
+	moved_as_step(c);
 	json_object_set_new(c->result, "position", cmd_vec(ia->m.g.p, 3));
 	return 0;
 }
@@ -464,10 +481,7 @@ cmd_get_manip(struct cmd_ctx *c)
 {
 	const struct interact *ia = c->d->interact;
 	int on = ia && ia->mode != INTERACT_NONE;
-	json_object_set_new(c->result, "mode",
-			    json_string(on && ia->mode == INTERACT_PRIMITIVE
-						? interact_primitive_to_str(ia->primitive)
-						: interact_mode_to_str(on ? ia->mode : INTERACT_NONE)));
+	json_object_set_new(c->result, "mode", json_string(on ? interact_name(ia) : "none"));
 	if (!on) {
 		json_object_set_new(c->result, "view", json_null());
 		json_object_set_new(c->result, "position", json_null());

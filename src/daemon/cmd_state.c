@@ -83,18 +83,9 @@ cmd_save_session(struct cmd_ctx *c)
 static int
 replace_env(struct cmd_ctx *c, const char *text, size_t len, const char *what)
 {
-	struct env *fresh = malloc(sizeof *fresh);
-	if (!fresh)
-		return cmd_fail(c, "internal", "out of memory");
-	env_init(fresh);
 	char err[300];
-	if (session_read(text, len, c->d->state_dir, c->d->library_dir, fresh, err, sizeof err) < 0) {
-		free(fresh);
+	if (daemon_replace_env(c->d, text, len, err, sizeof err) < 0)
 		return cmd_fail(c, "bad-file", "%s: %s", what, err);
-	}
-	env_clear(&c->d->env);
-	c->d->env = *fresh;
-	free(fresh);
 	return 0;
 }
 
@@ -214,14 +205,14 @@ sub_kinds(struct cmd_ctx *c, unsigned *kinds)
 	} names[] = { { "posture", SUB_POSTURE }, { "telemetry", SUB_TELEMETRY },
 		      { "message", SUB_MESSAGE }, { "frame", SUB_FRAME },
 		      { "stability", SUB_STABILITY }, { "alert", SUB_ALERT },
-		      { "input", SUB_INPUT } };
+		      { "input", SUB_INPUT }, { "kiosk", SUB_KIOSK } };
 	for (size_t i = 0; i < sizeof names / sizeof *names; i++)
 		if (!strcmp(c->argv[0], names[i].name)) {
 			*kinds = names[i].kind;
 			return 0;
 		}
 	return cmd_fail(c, "bad-argument",
-			"events are posture, telemetry, message, frame, stability, alert or input");
+			"events are posture, telemetry, message, frame, stability, alert, input or kiosk");
 }
 
 static int

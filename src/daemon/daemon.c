@@ -1,8 +1,11 @@
-/* daemon.c - undo and redo checkpoints, the pick models */
+/* daemon.c - undo and redo checkpoints, the kiosk's steps, the pick models */
 #include "daemon/daemon.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "daemon/session.h"
 
 void
 daemon_checkpoints_clear(struct checkpoints *c)
@@ -24,6 +27,84 @@ daemon_checkpoints_push(struct checkpoints *c, char *text, size_t len)
 	c->text[c->n] = text;
 	c->len[c->n] = len;
 	c->n++;
+}
+
+int
+daemon_replace_env(struct daemon *d, const char *text, size_t len, char *err, size_t errlen)
+{
+	struct env *fresh = malloc(sizeof *fresh);
+	if (!fresh) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	env_init(fresh);
+	if (session_read(text, len, d->state_dir, d->library_dir, fresh, err, errlen) < 0) {
+		free(fresh);
+		return -1;
+	}
+	env_clear(&d->env);
+	d->env = *fresh;
+	free(fresh);
+	return 0;
+}
+
+int
+daemon_step_begin(struct daemon *d, int fig, const char *mode)
+{
+	struct daemon_step *st = &d->step;
+	if (st->open)
+		return 0;
+	if (!(st->before = session_to_string(&d->env, &st->len)))
+		return -1;
+	st->open = 1;
+	st->fig = fig;
+	st->gen = fig >= 0 && fig < ENV_MAX_FIGURES ? d->env.fig[fig].gen : 0;
+	snprintf(st->mode, sizeof st->mode, "%s", mode);
+	return 0;
+}
+
+static void
+step_close(struct daemon_step *st)
+{
+	free(st->before);
+	st->before = NULL;
+	st->open = 0;
+}
+
+int
+daemon_step_end(struct daemon *d)
+{
+	struct daemon_step *st = &d->step;
+	if (!st->open)
+		return 0;
+	size_t len;
+	char *now = session_to_string(&d->env, &len);
+	/* a click that moved nothing is no step to undo */
+	int changed = !now || len != st->len || memcmp(now, st->before, len);
+	free(now);
+	if (changed) {
+		daemon_checkpoints_push(&d->undo, st->before, st->len);
+		daemon_checkpoints_clear(&d->redo);
+		st->before = NULL;
+	}
+	step_close(st);
+	return changed;
+}
+
+int
+daemon_step_abandon(struct daemon *d, char *err, size_t errlen)
+{
+	struct daemon_step *st = &d->step;
+	if (!st->open)
+		return 0;
+	/* the views stay as they are: a camera turned during the step was journaled on its own */
+	struct env_view views[ENV_MAX_VIEWS];
+	memcpy(views, d->env.view, sizeof views);
+	int rc = daemon_replace_env(d, st->before, st->len, err, errlen);
+	if (rc == 0)
+		memcpy(d->env.view, views, sizeof views);
+	step_close(st);
+	return rc;
 }
 
 static uint64_t

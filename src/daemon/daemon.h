@@ -51,6 +51,22 @@ struct daemon_stats {
 	int step_cut;      /* 1 when the step factor shortened a goal */
 };
 
+/*
+ * A kiosk action as one undoable step (issue 14): from the first button
+ * down in a mode to the last one up (or a typed value, a snap), the state
+ * before it is kept; at its end that state becomes one undo checkpoint.
+ * The journal marks both ends, so a crash mid-step comes back to the
+ * state before it: the last completed step.
+ */
+struct daemon_step {
+	int open;
+	int fig;        /* the figure slot the step changes (the busy rule's) */
+	uint32_t gen;   /* ... and its generation */
+	char mode[32];  /* the mode it is made in, for the busy message */
+	char *before;   /* the session when it began */
+	size_t len;
+};
+
 enum sub_kind {
 	SUB_POSTURE = 1 << 0,
 	SUB_TELEMETRY = 1 << 1,
@@ -59,6 +75,7 @@ enum sub_kind {
 	SUB_STABILITY = 1 << 4, /* every frame: support polygon, balance point, margin */
 	SUB_ALERT = 1 << 5,     /* the stability margin crossing its threshold */
 	SUB_INPUT = 1 << 6,     /* every input event, decoded, as the loop takes it */
+	SUB_KIOSK = 1 << 7,     /* the kiosk's mode and step, as they change */
 };
 
 /* the name of the constraint a drag holds its site with (cmd_manip.c; the loop ends it) */
@@ -69,6 +86,7 @@ struct daemon {
 	char state_dir[4096];
 	char library_dir[4096]; /* shipped figure files, named "lib:NAME"; empty: none */
 	struct checkpoints undo, redo;
+	struct daemon_step step;
 	struct daemon_stats stats;
 	/* the loop's services; NULL when absent (tools, tests) */
 	void *loop;
@@ -93,7 +111,10 @@ struct daemon {
 	void (*bring_into_view)(struct daemon *d, int v, const double p[3]);
 	/* G was set from outside (a snap): what the mode moves follows; NULL: none */
 	void (*mode_moved)(struct daemon *d);
+	/* a step of the mode begins ('B') or ends ('E'), journaled; NULL: none */
+	void (*mode_step)(struct daemon *d, char end);
 	double pointer_gain;
+	uint64_t held_max_us; /* a mouse button held this long ends its drag (set input held=) */
 	struct pick_cache picks;
 };
 
@@ -101,6 +122,28 @@ struct daemon {
 void daemon_checkpoints_clear(struct checkpoints *c);
 /* pushes a text (taking ownership); drops the oldest when full */
 void daemon_checkpoints_push(struct checkpoints *c, char *text, size_t len);
+
+/*
+ * Replaces the environment with the session in text; nothing changes on
+ * error (0, or -1 with err).
+ */
+int daemon_replace_env(struct daemon *d, const char *text, size_t len, char *err, size_t errlen);
+
+/*
+ * A step begins on figure slot fig in mode (the state now kept); a no-op
+ * when one is open. 0, or -1 when out of memory (no step then).
+ */
+int daemon_step_begin(struct daemon *d, int fig, const char *mode);
+/*
+ * The open step ends: when it changed anything, the state before it is
+ * pushed for undo and redo is forgotten (1); else nothing (0).
+ */
+int daemon_step_end(struct daemon *d);
+/*
+ * The open step taken back (a crash mid-step): the state before it
+ * restored, but for the views, whose cameras stay; 0, or -1 with err.
+ */
+int daemon_step_abandon(struct daemon *d, char *err, size_t errlen);
 
 /*
  * The pick model of figure slot fig (occupied), built or rebuilt when its

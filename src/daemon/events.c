@@ -107,6 +107,41 @@ events_message(struct events *E)
 }
 
 void
+events_kiosk(struct events *E)
+{
+	const struct daemon *d = E->d;
+	const struct interact *ia = d->interact;
+	int on = ia && ia->mode != INTERACT_NONE;
+	const char *fig = on && ia->fig >= 0 ? d->env.fig[ia->fig].name : "";
+	const char *view = on && ia->view >= 0 ? d->env.view[ia->view].name : "";
+	char now[sizeof E->told_kiosk];
+	snprintf(now, sizeof now, "%s|%s|%s|%d", on ? interact_name(ia) : "none", fig, view,
+		 d->step.open);
+	if (!strcmp(now, E->told_kiosk))
+		return;
+	memcpy(E->told_kiosk, now, sizeof now);
+	if (!events_wanted(E, SUB_KIOSK))
+		return;
+	struct jbuf *j = events_begin(E, "kiosk", NULL);
+	jbuf_key(j, "mode", 0);
+	jbuf_str(j, on ? interact_name(ia) : "none");
+	jbuf_key(j, "target", 0);
+	if (on && fig[0])
+		jbuf_str(j, fig);
+	else
+		jbuf_raw(j, "null");
+	jbuf_key(j, "view", 0);
+	if (on && view[0])
+		jbuf_str(j, view);
+	else
+		jbuf_raw(j, "null");
+	jbuf_key(j, "step", 0);
+	jbuf_bool(j, d->step.open);
+	jbuf_raw(j, "}");
+	events_send(E, SUB_KIOSK);
+}
+
+void
 events_telemetry(struct events *E, int fig, const struct ik_result *r, uint64_t budget,
 		 double us)
 {

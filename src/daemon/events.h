@@ -26,6 +26,7 @@ struct events {
 	uint64_t told_hash[ENV_MAX_FIGURES]; /* postures as the last posture events told them */
 	uint32_t told_gen[ENV_MAX_FIGURES];
 	int limit_dofs[EVENTS_LIMITS_REPORTED];
+	char told_kiosk[256]; /* the kiosk's state as the last kiosk event told it */
 };
 
 /* 0, or -1 when out of memory (events_free cleans up either way) */
@@ -47,6 +48,12 @@ void events_send(struct events *E, unsigned kind);
 void events_posture_changes(struct events *E);
 /* the message line under the pictures */
 void events_message(struct events *E);
+/*
+ * The kiosk's state, when it changed since the last kiosk event: the mode
+ * (none, figure, drag, joint, site, hand, ...), its figure and view, and
+ * whether a step (a drag) is under way.
+ */
+void events_kiosk(struct events *E);
 /* why a goal is (not) reached: the solver's view of one figure's frame */
 void events_telemetry(struct events *E, int fig, const struct ik_result *r, uint64_t budget,
 		      double us);

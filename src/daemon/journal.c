@@ -67,7 +67,7 @@ write_checkpoints(FILE *f, const char *name, const struct checkpoints *c)
 int
 journal_snapshot(struct journal *j, const struct daemon *d, int force)
 {
-	if (!force && j->since_snap < JOURNAL_SNAPSHOT_RECORDS)
+	if ((!force && j->since_snap < JOURNAL_SNAPSHOT_RECORDS) || d->step.open)
 		return 0;
 	char *buf = NULL;
 	size_t len = 0;
@@ -161,6 +161,21 @@ load_snapshot(struct journal *j, struct daemon *d, uint64_t *snap_seq, char *err
 
 /* ---- recovery ------------------------------------------------------------- */
 
+static int record(struct journal *j, char kind, const char *body, size_t len);
+
+/* a kiosk step's mark, as the live daemon acted on it */
+static void
+replay_step(struct daemon *d, char kind, uint64_t seq)
+{
+	char msg[300];
+	if (kind == 'B' && daemon_step_begin(d, -1, "replay") < 0)
+		fprintf(stderr, "postured: journal record %" PRIu64 ": out of memory\n", seq);
+	else if (kind == 'E')
+		daemon_step_end(d);
+	else if (kind == 'A' && daemon_step_abandon(d, msg, sizeof msg) < 0)
+		fprintf(stderr, "postured: journal record %" PRIu64 ": %s\n", seq, msg);
+}
+
 static int
 replay(struct journal *j, struct daemon *d, uint64_t snap_seq, char *err, size_t errlen)
 {
@@ -195,6 +210,8 @@ replay(struct journal *j, struct daemon *d, uint64_t snap_seq, char *err, size_t
 				char msg[300];
 				if (session_apply_line(&d->env, body, blen, msg, sizeof msg) < 0)
 					fprintf(stderr, "postured: journal record %" PRIu64 ": %s\n", seq, msg);
+			} else if (kind == 'B' || kind == 'E' || kind == 'A') {
+				replay_step(d, kind, seq);
 			}
 		}
 		j->seq = seq;
@@ -222,9 +239,16 @@ journal_open(struct journal *j, struct daemon *d, char *err, size_t errlen)
 		return -1;
 	if (j->seq < snap_seq)
 		j->seq = snap_seq;
+	/* a step begun and never ended: the daemon died mid-drag; back to before it */
+	if (d->step.open) {
+		if (daemon_step_abandon(d, err, errlen) < 0 || journal_step(j, 'A') < 0)
+			return -1;
+		fprintf(stderr, "postured: a step was under way when the daemon stopped: taken back\n");
+	}
 	note_postures(j, d);
 	return 0;
 }
+
 
 static int
 record(struct journal *j, char kind, const char *body, size_t len)
@@ -325,4 +349,10 @@ journal_close(struct journal *j)
 	if (j->fd >= 0)
 		close(j->fd);
 	j->fd = -1;
+}
+
+int
+journal_step(struct journal *j, char kind)
+{
+	return record(j, kind, "-", 1); /* a body, so the record reads like the others */
 }

@@ -5,7 +5,7 @@
  * The journal is an append-only text file of numbered records: "C line"
  * for a state-changing command, "P statement" for a posture the solver
  * reached between commands (the session's root and q statements, 17
- * digits). A snapshot (the session, the undo and redo checkpoints and the
+ * digits), "B", "E" and "A" for the ends of a kiosk step (journal_step). A snapshot (the session, the undo and redo checkpoints and the
  * number of the last record it includes) bounds the journal: after it is
  * safely renamed into place the journal is emptied, and records it already
  * includes are skipped on recovery, so a crash between the two is harmless.
@@ -42,10 +42,21 @@ int journal_command(struct journal *j, const struct daemon *d, const char *line,
 /* records the postures the solver changed since the journal last saw them */
 int journal_postures(struct journal *j, const struct daemon *d);
 
+/*
+ * Marks a kiosk step (daemon_step_*): 'B' it begins, 'E' it ends, 'A' it
+ * was taken back. On recovery the marks rebuild the undo checkpoints the
+ * steps made, and a step begun but never ended (a crash mid-drag) is
+ * taken back: the state is the last completed step's.
+ */
+int journal_step(struct journal *j, char kind);
+
 /* flushes to disk: call before sending a reply that follows records */
 int journal_sync(struct journal *j);
 
-/* writes a snapshot and empties the journal when it has grown (or force) */
+/*
+ * Writes a snapshot and empties the journal when it has grown (or force).
+ * Not while a step is open: its start would be lost (force: end it first).
+ */
 int journal_snapshot(struct journal *j, const struct daemon *d, int force);
 
 void journal_close(struct journal *j);

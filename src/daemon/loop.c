@@ -97,6 +97,31 @@ mode_moved(struct daemon *d)
 	modes_apply(&L->modes);
 }
 
+/*
+ * A step of the mode: at its start and its end the postures are made
+ * durable and the mark journaled (journal_step), so a crash mid-step is
+ * taken back on recovery and a completed one is one undo.
+ */
+static void
+mode_step(struct daemon *d, char end)
+{
+	struct loop *L = d->loop;
+	if (journal_postures(&L->j, d) < 0)
+		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	if (end == 'B') {
+		const struct interact *ia = d->interact;
+		if (d->step.open || daemon_step_begin(d, ia->fig, interact_name(ia)) < 0)
+			return;
+	} else {
+		if (!d->step.open)
+			return;
+		daemon_step_end(d);
+	}
+	if (journal_step(&L->j, end) < 0)
+		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	events_kiosk(&L->events);
+}
+
 static void
 command_from_modes(void *ctx, const char *line)
 {
@@ -124,6 +149,7 @@ take_input(struct loop *L)
 		events_input(&L->events, &e, px, py);
 		modes_input(&L->modes, &e, px, py);
 	}
+	events_kiosk(&L->events);
 }
 
 /* ---- frames ------------------------------------------------------------------ */
@@ -273,6 +299,7 @@ request(struct loop *L, int i, const char *line, size_t len)
 		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
 	if (out.mutated)
 		L->scene.dirty = 1;
+	events_kiosk(&L->events);
 	if (out.reply) { /* the message line under the pictures */
 		snprintf(L->d.message, sizeof L->d.message, "> %.*s  %s", (int)(len > 100 ? 100 : len),
 			 line, out.ok ? "ok" : "refused");
@@ -360,6 +387,7 @@ live_frame(struct loop *L)
 	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
 	take_input(L);
 	modes_frame(&L->modes, real_now(NULL));
+	events_kiosk(&L->events);
 	frame(L, &clock, budget, &changed);
 	uint64_t now = real_now(NULL);
 	L->scene.dirty |= changed;
@@ -477,6 +505,8 @@ loop_run(const struct loop_config *cfg)
 	L->d.interact = &L->modes.interact;
 	L->d.bring_into_view = bring_into_view;
 	L->d.mode_moved = mode_moved;
+	L->d.mode_step = mode_step;
+	L->d.held_max_us = MODES_HELD_MAX_US;
 	L->hotplug.fd = -1;
 	input_queue_init(&L->input);
 	L->d.input = &L->input;
@@ -582,6 +612,8 @@ loop_run(const struct loop_config *cfg)
 	}
 	fprintf(stderr, "postured: stopping\n");
 	notify_send("STOPPING=1");
+	/* a step under way is kept as it is, as a release would keep it */
+	mode_step(&L->d, 'E');
 	/* what the solver did last, then a snapshot: a clean start next time */
 	journal_postures(&L->j, &L->d);
 	journal_sync(&L->j);

@@ -169,26 +169,31 @@ adjust_frames(struct modes *M, uint64_t now_us)
 	}
 }
 
-/* the snaps and adjustments under way, one in-between each a frame */
-void
-modes_frame(struct modes *M, uint64_t now_us)
-{
-	adjust_frames(M, now_us);
-	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
-		if (!M->d->env.view[v].used || M->viewctl[v].state != VIEWCTL_SNAPPING)
-			continue;
-		struct camera cam;
-		view_camera_of_view(&M->d->env.view[v], &cam);
-		if (viewctl_frame(&M->viewctl[v], &cam, now_us) == VIEWCTL_CHANGED)
-			store_camera(M, v, &cam);
-	}
-}
 
-/* a drag ended: its constraint deleted as a command, so the journal has it too */
+/* a drag ended: its constraint, which only the mode uses, goes (the posture stays) */
 static void
 end_drag(struct modes *M)
 {
-	M->run_command(M->ctx, "delete constraint " CMD_DRAG_CONSTRAINT);
+	int con = env_find_constraint(&M->d->env, CMD_DRAG_CONSTRAINT);
+	if (con >= 0)
+		env_remove_constraint(&M->d->env, con);
+}
+
+/* a step of the mode begins ('B') or ends ('E'): one undoable, journaled change */
+static void
+mode_step(struct modes *M, char end, uint64_t now_us)
+{
+	if (end == 'B')
+		M->step_began_us = now_us;
+	if (M->d->mode_step)
+		M->d->mode_step(M->d, end);
+}
+
+static int
+is_mouse_button(const struct input_event_rec *e)
+{
+	return e->kind == INPUT_BUTTON &&
+	       (e->code == BTN_LEFT || e->code == BTN_MIDDLE || e->code == BTN_RIGHT);
 }
 
 /* the modes whose object is where G is: the view adjusts to keep G workable (§3.7) */
@@ -425,6 +430,17 @@ modes_apply(struct modes *M)
 	M->scene->dirty = 1;
 }
 
+/* the buttons came up (or the mode ended): the step is over, with what it moved */
+static void
+end_step_if_due(struct modes *M)
+{
+	if (!M->step_end_due)
+		return;
+	M->step_end_due = 0;
+	mode_step(M, 'E', 0);
+}
+
+
 /* an input event to the interactive mode; its target applied at once */
 static void
 drive_mode(struct modes *M, const struct input_event_rec *e, long px, long py)
@@ -447,7 +463,12 @@ drive_mode(struct modes *M, const struct input_event_rec *e, long px, long py)
 	struct camera cam;
 	view_camera_of_view(vw, &cam);
 	enum interact_mode mode = ia->mode;
+	/* the first button down begins a step, the last one up ends it */
+	if (is_mouse_button(e) && e->value == 1 && !interact_buttons(ia))
+		mode_step(M, 'B', modes_now(M));
 	int r = interact_input(ia, e, px, py, &cam, vw->width, vw->height);
+	if (((r & INTERACT_RELEASED) && !interact_buttons(ia)) || (r & INTERACT_ENDED))
+		M->step_end_due = 1;
 	if (r)
 		M->scene->dirty = 1;
 	maybe_adjust_view(M, &cam);
@@ -459,6 +480,7 @@ drive_mode(struct modes *M, const struct input_event_rec *e, long px, long py)
 	if (r & INTERACT_ENDED) {
 		if (mode == INTERACT_DRAG)
 			end_drag(M);
+		end_step_if_due(M);
 		return;
 	}
 	if (mode == INTERACT_DRAG && (r & INTERACT_RELEASED)) {
@@ -468,14 +490,17 @@ drive_mode(struct modes *M, const struct input_event_rec *e, long px, long py)
 		interact_reset_orientation(ia, &eff);
 		r |= INTERACT_MOVED;
 	}
-	if (!(r & INTERACT_MOVED))
+	if (!(r & INTERACT_MOVED)) {
+		end_step_if_due(M);
 		return;
+	}
 	/* beyond the dissertation: a dragged G near the edge of the picture, the view follows */
 	if (moves_by_operator(mode) && !M->adjust[ia->view].active &&
 	    !view_adjust_inside(&cam, vw->width, vw->height, ia->m.g.p, MODES_EDGE_MARGIN) &&
 	    view_adjust_focus(&M->adjust[ia->view], &cam, ia->m.g.p, modes_now(M)) > 0)
 		remember_view(M, ia->view, &cam);
 	modes_apply(M);
+	end_step_if_due(M);
 }
 
 void
@@ -484,4 +509,45 @@ modes_input(struct modes *M, const struct input_event_rec *e, long px, long py)
 	track_pointer(M, e, px, py);
 	if (!drive_view(M, e, px, py))
 		drive_mode(M, e, px, py);
+}
+
+/*
+ * A button held for MODES_HELD_MAX_US with nothing else happening is a
+ * button stuck (or a person gone): its drag ends as a release would end
+ * it, so the kiosk is never left in a step.
+ */
+static void
+release_held_buttons(struct modes *M, uint64_t now_us)
+{
+	struct interact *ia = &M->interact;
+	uint64_t limit = M->d->held_max_us ? M->d->held_max_us : MODES_HELD_MAX_US;
+	if (!M->d->step.open || !interact_buttons(ia) || now_us < M->step_began_us ||
+	    now_us - M->step_began_us < limit)
+		return;
+	static const unsigned short codes[] = { BTN_LEFT, BTN_MIDDLE, BTN_RIGHT };
+	for (int k = 0; k < 3 && interact_buttons(ia); k++) {
+		if (!(interact_buttons(ia) & (1u << k)))
+			continue;
+		struct input_event_rec up = { .t_us = now_us, .device = INPUT_DEVICE_SOCKET,
+					      .kind = INPUT_BUTTON, .code = codes[k], .value = 0 };
+		drive_mode(M, &up, 0, 0);
+	}
+	snprintf(M->d->message, sizeof M->d->message,
+		 "a button held for %.0f s: its drag ended", (double)limit / 1e6);
+}
+
+/* the snaps and adjustments under way, one in-between each a frame */
+void
+modes_frame(struct modes *M, uint64_t now_us)
+{
+	release_held_buttons(M, now_us);
+	adjust_frames(M, now_us);
+	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
+		if (!M->d->env.view[v].used || M->viewctl[v].state != VIEWCTL_SNAPPING)
+			continue;
+		struct camera cam;
+		view_camera_of_view(&M->d->env.view[v], &cam);
+		if (viewctl_frame(&M->viewctl[v], &cam, now_us) == VIEWCTL_CHANGED)
+			store_camera(M, v, &cam);
+	}
 }

@@ -23,6 +23,9 @@
 #define MODES_VIEW_UNDO 8      /* automatic view changes remembered per view */
 #define MODES_EDGE_MARGIN 0.1  /* a dragged G this near the picture's edge: the view follows */
 
+/* a button held this long ends its drag (issue 14: never a mode stuck in a step) */
+#define MODES_HELD_MAX_US (60ull * 1000000)
+
 /* the segments a figure may have for its own body to obstruct (more: all of it is left out) */
 #define MODES_MAX_SEGMENTS 1024
 
@@ -39,6 +42,8 @@ struct modes {
 	int nundo_view[ENV_MAX_VIEWS];
 	int pointer_view;                      /* the view the pointer was last in, -1: none yet */
 	unsigned char own_parts[MODES_MAX_SEGMENTS]; /* §3.7.1: the parts around G, left out */
+	uint64_t step_began_us; /* when the step's first button went down */
+	int step_end_due;       /* the last button came up: end the step once it is applied */
 	double pointer_x, pointer_y;
 };
 

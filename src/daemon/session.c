@@ -112,7 +112,7 @@ session_write(const struct env *e, FILE *f)
 	}
 	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
 		const struct env_constraint *c = &e->con[i];
-		if (!c->gen)
+		if (!c->gen || c->transient)
 			continue;
 		const struct env_figure *fg = &e->fig[c->fig];
 		const struct model *m = fg->model;

@@ -253,6 +253,21 @@ interact_reset_orientation(struct interact *ia, const struct xform *effector)
 	manip_set(&ia->m, &g);
 }
 
+unsigned
+interact_buttons(const struct interact *ia)
+{
+	if (ia->mode == INTERACT_NONE)
+		return 0;
+	return ia->mode == INTERACT_JOINT ? ia->jm.buttons : ia->m.buttons;
+}
+
+const char *
+interact_name(const struct interact *ia)
+{
+	return ia->mode == INTERACT_PRIMITIVE ? interact_primitive_to_str(ia->primitive)
+					      : interact_mode_to_str(ia->mode);
+}
+
 void
 interact_end(struct interact *ia)
 {

@@ -148,6 +148,12 @@ void interact_dof_view(const struct model *m, const struct state *s, int dof,
  */
 void interact_increments(struct interact *ia, int on, double step, double step_angle);
 
+/* the mouse buttons held in the mode (MANIP_LEFT | MANIP_MIDDLE | MANIP_RIGHT), 0: none */
+unsigned interact_buttons(const struct interact *ia);
+
+/* the mode's name as the commands give it: "figure", "joint", "drag", "site", "hand", ... */
+const char *interact_name(const struct interact *ia);
+
 void interact_end(struct interact *ia);
 
 const char *interact_mode_to_str(enum interact_mode m);

@@ -52,6 +52,7 @@ struct env_constraint {
 	uint32_t gen; /* 0: a free slot */
 	char name[MODEL_NAME_MAX];
 	int fig; /* figure slot; the def's site and joint indices are that figure's */
+	int transient; /* a mode's own (a drag's): not part of a session, gone with the mode */
 	struct ik_constraint_def def;
 };
 

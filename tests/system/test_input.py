@@ -70,7 +70,7 @@ def test_motion_in_pixels_keeps_the_fractions_and_the_raw_counts(daemon):
     """Motion is flat: pixels = counts * gain * 1000 / DPI (1000 for the socket), whole
     pixels out, the fractions kept; the raw counts stay beside them."""
     with daemon.client() as c:
-        assert c.request("set input gain=2.5") == {"grab": False, "gain": 2.5}
+        assert c.request("set input gain=2.5") == {"grab": False, "gain": 2.5, "held": 60}
         assert c.subscribe("input") == {}
         moves = [(3, -2), (0.3, 0.3), (0.3, -0.1), (0.3, 0.1), (-1, 0)]
         for dx, dy in moves:
