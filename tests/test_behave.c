@@ -82,7 +82,7 @@ snapshot(const struct rig *r, const char *name, const double eye[3])
 	view_begin(dl, &cam, 480, 360);
 	view_add_figure(dl, r->m, r->s, 0);
 	view_add_balance(dl, r->m, r->s);
-	view_add_status(dl, name, NULL, 0);
+	view_add_status(dl, name, NULL, -1);
 	struct frame f;
 	assert_int_equal(render_frame(ren, dl, 0, &f), 0);
 	snprintf(path, sizeof path, "build/test-output/behave-%s.png", name);

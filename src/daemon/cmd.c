@@ -30,6 +30,24 @@ static const struct cmd_entry table[] = {
 
 #define NCMD ((int)(sizeof table / sizeof *table))
 
+const char *
+cmd_entry_verb(int i)
+{
+	return i >= 0 && i < NCMD ? table[i].verb : NULL;
+}
+
+const char *
+cmd_entry_object(int i)
+{
+	return i >= 0 && i < NCMD ? table[i].object : NULL;
+}
+
+const char *
+cmd_entry_usage(int i)
+{
+	return i >= 0 && i < NCMD ? table[i].usage : NULL;
+}
+
 /* the table entry for the words, or NULL with the error set */
 static const struct cmd_entry *
 lookup(struct cmd_ctx *c, const struct words *w, int *first_arg)
@@ -200,7 +218,9 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	/* a checkpoint for undo, taken before the change */
 	char *before = NULL;
 	size_t before_len = 0;
-	int checkpoint = (e->flags & CMD_MUTATES) && e->fn != cmd_undo && e->fn != cmd_redo;
+	/* the daemon's own lines inside a step (change view's camera) are part of its one undo */
+	int checkpoint = (e->flags & CMD_MUTATES) && e->fn != cmd_undo && e->fn != cmd_redo &&
+			 !(client == DAEMON_CLIENT_JOURNAL && d->step.open);
 	if (checkpoint && !(before = session_to_string(&d->env, &before_len))) {
 		out->json = dump_reply(0, w.tag, NULL, "internal", "out of memory");
 		return;

@@ -32,6 +32,14 @@ struct cmd_outcome {
  */
 void cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_outcome *out);
 
+/*
+ * The table's entries one by one, for completion and menus: 0 .. n-1 give
+ * the verb, the object ("" for none) and the usage; NULL past the end.
+ */
+const char *cmd_entry_verb(int i);
+const char *cmd_entry_object(int i);
+const char *cmd_entry_usage(int i);
+
 /* prints the markdown table of commands (for PROTOCOL.md) */
 void cmd_print_table(FILE *f);
 

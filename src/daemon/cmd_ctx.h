@@ -15,7 +15,7 @@
 
 struct cmd_ctx {
 	struct daemon *d;
-	int client;       /* the requesting client, -1 for the journal and tools */
+	int client;       /* the requesting client; DAEMON_CLIENT_JOURNAL, DAEMON_CLIENT_KIOSK */
 	int argc;         /* words after verb and object */
 	char **argv;
 	json_t *result;   /* the handler's result object */

@@ -259,3 +259,57 @@ cmd_set_input(struct cmd_ctx *c)
 	json_object_set_new(c->result, "gain", json_real(c->d->pointer_gain));
 	return 0;
 }
+
+/* the kiosk's keyboard: set kiosk [keymap=LAYOUT[:VARIANT]] [viewkey=KEY] */
+int
+cmd_set_kiosk(struct cmd_ctx *c)
+{
+	struct kiosk *k = c->d->kiosk;
+	if (!k)
+		return cmd_fail(c, "bad-argument", "this daemon has no kiosk keyboard");
+	for (int i = 0; i < c->argc; i++)
+		if (!words_is_key(c->argv[i], "keymap") && !words_is_key(c->argv[i], "viewkey"))
+			return cmd_fail(c, "bad-argument", "keymap=LAYOUT[:VARIANT] or viewkey=KEY, not '%.40s'",
+					c->argv[i]);
+	const char *map = cmd_key(c, "keymap"), *vk = cmd_key(c, "viewkey");
+	int code = -1;
+	if (vk) {
+		char name[64];
+		snprintf(name, sizeof name, "%s%.50s", strncmp(vk, "KEY_", 4) ? "KEY_" : "", vk);
+		if ((code = libevdev_event_code_from_name(EV_KEY, name)) < 0)
+			return cmd_fail(c, "bad-argument", "viewkey: '%.40s' is no key name (F2, KEY_F3)", vk);
+	}
+	if (map) {
+		struct kbd_text_def kd = kbd_text_default_def();
+		char names[128], err[300];
+		if (kiosk_keymap_names(map, &kd, names, sizeof names) < 0)
+			return cmd_fail(c, "bad-argument", "keymap is LAYOUT[:VARIANT], such as de or de:nodeadkeys");
+		if (kiosk_set_keymap(k, &kd, err, sizeof err) < 0)
+			return cmd_fail(c, "not-found", "%s", err);
+		snprintf(c->d->keymap, sizeof c->d->keymap, "%s", map);
+	}
+	if (code >= 0)
+		kiosk_set_view_key(k, (unsigned)code);
+	return cmd_get_kiosk(c);
+}
+
+/* the kiosk's state: its mode, the edit line and the keyboard's settings */
+int
+cmd_get_kiosk(struct cmd_ctx *c)
+{
+	struct kiosk *k = c->d->kiosk;
+	const struct interact *ia = c->d->interact;
+	json_object_set_new(c->result, "mode",
+			    json_string(ia && ia->mode != INTERACT_NONE ? interact_name(ia) : "none"));
+	json_object_set_new(c->result, "step", json_boolean(c->d->step.open));
+	if (!k)
+		return 0;
+	const struct editline *el = kiosk_line(k);
+	json_object_set_new(c->result, "line", json_string(editline_text(el)));
+	json_object_set_new(c->result, "cursor", json_integer((json_int_t)el->cursor));
+	json_object_set_new(c->result, "value", json_boolean(kiosk_typing_value(k)));
+	json_object_set_new(c->result, "keymap", json_string(c->d->keymap));
+	const char *key = libevdev_event_code_get_name(EV_KEY, kiosk_view_key(k));
+	json_object_set_new(c->result, "viewkey", json_string(key ? key : "?"));
+	return 0;
+}

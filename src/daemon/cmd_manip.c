@@ -105,7 +105,7 @@ cmd_manipulate_figure(struct cmd_ctx *c)
 	int fig, v;
 	if (mode_args(c, 1, NULL, &fig, &v) < 0)
 		return -1;
-	if (c->client < 0) /* replaying the journal: no mode nobody drives */
+	if (c->client == DAEMON_CLIENT_JOURNAL) /* replaying the journal: no mode nobody drives */
 		return 0;
 	struct camera cam;
 	const struct env_view *vw = mode_camera(c, v, &cam);
@@ -139,7 +139,7 @@ cmd_manipulate_site(struct cmd_ctx *c)
 				"%s hangs from %s: moving it would move the segment, not the site "
 				"(root the figure there first: set root %s %s)",
 				f->model->seg_name[seg], c->argv[1], f->name, c->argv[1]);
-	if (c->client < 0)
+	if (c->client == DAEMON_CLIENT_JOURNAL)
 		return 0;
 	struct camera cam;
 	const struct env_view *vw = mode_camera(c, v, &cam);
@@ -163,7 +163,7 @@ cmd_manipulate_joint(struct cmd_ctx *c)
 		return cmd_fail(c, "not-found", "no joint '%.60s' on %s", c->argv[1], f->name);
 	if (f->model->jnt_ndof[joint] < 1)
 		return cmd_fail(c, "bad-argument", "joint %s has no DOF to move", c->argv[1]);
-	if (c->client < 0)
+	if (c->client == DAEMON_CLIENT_JOURNAL)
 		return 0;
 	struct camera cam;
 	const struct env_view *vw = mode_camera(c, v, &cam);
@@ -192,7 +192,7 @@ manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 				f->name, f->name);
 	if (sided && (side = cmd_side(c, c->argv[1])) < 0)
 		return -1;
-	if (c->client < 0)
+	if (c->client == DAEMON_CLIENT_JOURNAL)
 		return 0;
 	env_sync_solver(e, fig);
 	const struct behave *b = f->behave;
@@ -291,7 +291,8 @@ cmd_drag(struct cmd_ctx *c)
 		return -1;
 	struct env *e = &c->d->env;
 	struct env_figure *f = &e->fig[fig];
-	if (c->client < 0) /* an older journal's drag: its postures are journaled, not its mode */
+	/* an older journal's drag: its postures are journaled, not its mode */
+	if (c->client == DAEMON_CLIENT_JOURNAL)
 		return 0;
 	struct ik_constraint_def def = ik_constraint_default_def();
 	if ((def.effector_site = model_find_site(f->model, c->argv[1])) < 0)

@@ -13,6 +13,7 @@
 #include "devices/queue.h"
 #include "draw/frame.h"
 #include "interact/interact.h"
+#include "interact/kiosk.h"
 #include "interact/pick.h"
 #include "pose/env.h"
 
@@ -78,6 +79,10 @@ enum sub_kind {
 	SUB_KIOSK = 1 << 7,     /* the kiosk's mode and step, as they change */
 };
 
+/* the client a command comes from when no connection sent it */
+#define DAEMON_CLIENT_JOURNAL (-1) /* replayed from the journal, or the daemon's own line */
+#define DAEMON_CLIENT_KIOSK (-2)   /* typed at the kiosk's edit line */
+
 /* the name of the constraint a drag holds its site with (cmd_manip.c; the loop ends it) */
 #define CMD_DRAG_CONSTRAINT "drag"
 
@@ -107,6 +112,9 @@ struct daemon {
 	int (*set_input)(struct daemon *d, int grab, double gain);
 	/* the interactive mode the input drives (manipulate ...); NULL: none taken */
 	struct interact *interact;
+	/* the kiosk's keyboard and edit line, and its layout's name; NULL: none */
+	struct kiosk *kiosk;
+	char keymap[128];
 	/* turns view v, eased, until p is in view (§3.7), if it is not; NULL: none */
 	void (*bring_into_view)(struct daemon *d, int v, const double p[3]);
 	/* G was set from outside (a snap): what the mode moves follows; NULL: none */

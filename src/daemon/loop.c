@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <inttypes.h>
+#include <jansson.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +13,7 @@
 #include <unistd.h>
 
 #include "daemon/cmd.h"
+#include "daemon/complete.h"
 #include "daemon/events.h"
 #include "daemon/modes.h"
 #include "daemon/notify.h"
@@ -29,6 +31,7 @@ struct loop {
 	struct daemon d;
 	struct server srv;
 	struct journal j;
+	struct complete complete; /* Tab at the kiosk's edit line */
 	int sig_fd;
 	uint64_t period_us;
 	uint64_t synced_seq;  /* the last journal record known to be on disk */
@@ -109,8 +112,10 @@ mode_step(struct daemon *d, char end)
 	if (journal_postures(&L->j, d) < 0)
 		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
 	if (end == 'B') {
+		/* the busy rule's figure: the one a button held in the mode drags */
 		const struct interact *ia = d->interact;
-		if (d->step.open || daemon_step_begin(d, ia->fig, interact_name(ia)) < 0)
+		int fig = ia->mode != INTERACT_NONE && interact_buttons(ia) ? ia->fig : -1;
+		if (d->step.open || daemon_step_begin(d, fig, interact_name(ia)) < 0)
 			return;
 	} else {
 		if (!d->step.open)
@@ -120,6 +125,30 @@ mode_step(struct daemon *d, char end)
 	if (journal_step(&L->j, end) < 0)
 		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
 	events_kiosk(&L->events);
+}
+
+/*
+ * A line typed at the kiosk: run as the kiosk's (its modes start, the busy
+ * rule is not for it), journaled when it changes state, and its outcome
+ * on the message line, the error's own words when it failed.
+ */
+static void
+typed_at_kiosk(void *ctx, const char *line)
+{
+	struct loop *L = ctx;
+	struct cmd_outcome out;
+	size_t len = strlen(line);
+	cmd_run(&L->d, DAEMON_CLIENT_KIOSK, line, len, &out);
+	if (out.mutated && journal_command(&L->j, &L->d, line, len) < 0)
+		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	json_t *reply = out.json ? json_loads(out.json, 0, NULL) : NULL;
+	const char *why = json_string_value(json_object_get(json_object_get(reply, "error"), "message"));
+	snprintf(L->d.message, sizeof L->d.message, "> %.100s  %s%.120s", line,
+		 out.ok ? "ok" : "refused: ", out.ok ? "" : why ? why : "");
+	json_decref(reply);
+	free(out.json);
+	L->scene.dirty = 1;
+	events_message(&L->events);
 }
 
 static void
@@ -337,6 +366,32 @@ client_input(struct loop *L, int i)
 
 /* ---- the loop ---------------------------------------------------------------- */
 
+/*
+ * The kiosk's keyboard: the configured layout (a layout xkb-data does not
+ * know is said, and the keys then go to the modes alone, as before).
+ */
+static void
+start_kiosk(struct loop *L, const struct loop_config *cfg)
+{
+	struct kiosk_def kd = kiosk_default_def();
+	char names[128], err[300];
+	if (cfg->keymap && kiosk_keymap_names(cfg->keymap, &kd.keymap, names, sizeof names) < 0) {
+		fprintf(stderr, "postured: keymap '%s' is not LAYOUT[:VARIANT]; the kiosk takes no "
+				"typing\n", cfg->keymap);
+		return;
+	}
+	if (cfg->view_key)
+		kd.view_key = cfg->view_key;
+	L->complete.d = &L->d;
+	kd.complete = complete_words;
+	kd.complete_user = &L->complete;
+	if (!(L->modes.kiosk = kiosk_create(&kd, err, sizeof err)))
+		fprintf(stderr, "postured: the kiosk takes no typing: %s\n", err);
+	L->modes.run_typed = typed_at_kiosk;
+	L->d.kiosk = L->modes.kiosk;
+	snprintf(L->d.keymap, sizeof L->d.keymap, "%s", cfg->keymap ? cfg->keymap : "us");
+}
+
 /* a first start: the init file's commands, journaled like a client's */
 static int
 run_init(struct loop *L, const char *path)
@@ -502,6 +557,7 @@ loop_run(const struct loop_config *cfg)
 	L->d.render_view = render_view;
 	L->d.set_input = set_input;
 	modes_init(&L->modes, &L->d, &L->scene, command_from_modes, L);
+	start_kiosk(L, cfg);
 	L->d.interact = &L->modes.interact;
 	L->d.bring_into_view = bring_into_view;
 	L->d.mode_moved = mode_moved;
@@ -627,6 +683,7 @@ out:
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
 	daemon_picks_free(&L->d);
+	kiosk_free(L->modes.kiosk);
 	input_devs_close_all(&L->devs, real_now(NULL), &L->input);
 	hotplug_close(&L->hotplug);
 	events_free(&L->events);

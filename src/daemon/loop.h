@@ -26,6 +26,8 @@ struct loop_config {
 	int grab;                  /* the kiosk grab on the devices that have one */
 	double pointer_gain;       /* pixels per 1/1000 inch of mouse motion */
 	const char *hotplug;       /* "udev" (NULL: the same), "kernel" or "none" (devices/hotplug.h) */
+	const char *keymap;        /* the kiosk keyboard's layout, LAYOUT[:VARIANT]; NULL: us */
+	unsigned view_key;         /* the change-view key at the edit line; 0: KEY_F2 */
 };
 
 /* runs until SIGTERM or SIGINT; returns the process exit status */

@@ -7,6 +7,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <libevdev/libevdev.h>
+#include <linux/input-event-codes.h>
+
 #include "daemon/cmd.h"
 #include "daemon/loop.h"
 
@@ -38,6 +41,9 @@ static const char usage[] =
 	"                     udevd; needs root) or none\n"
 	"  --panel FILE       the dial panel's map: its axes and buttons by name (see\n"
 	"                     devices/can_map.h; tools/dbc2panel makes one from a DBC file)\n"
+	"  --keymap LAYOUT    the kiosk keyboard's layout, LAYOUT[:VARIANT] as xkb-data names\n"
+	"                     them (default us; e.g. de, fr, de:nodeadkeys)\n"
+	"  --view-key KEY     the key that enters change view from the edit line (default F2)\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
 	"  --protocol-table   print the command table of PROTOCOL.md and exit\n"
 	"  --help             this text\n"
@@ -47,7 +53,8 @@ static const char usage[] =
 
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
-	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16];
+	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16], keymap[128];
+	unsigned view_key;
 	char input[INPUT_DEVS_MAX][INPUT_DEVS_SPEC_MAX];
 	const char *inputs[INPUT_DEVS_MAX];
 	int ninputs;
@@ -96,6 +103,21 @@ set(struct settings *s, const char *key, const char *val)
 			return -1;
 		}
 		snprintf(s->hotplug, sizeof s->hotplug, "%s", val);
+	} else if (!strcmp(key, "keymap")) {
+		if (strlen(val) >= sizeof s->keymap || !val[0]) {
+			fprintf(stderr, "postured: keymap is a layout name such as us or de:nodeadkeys\n");
+			return -1;
+		}
+		snprintf(s->keymap, sizeof s->keymap, "%s", val);
+	} else if (!strcmp(key, "view-key")) {
+		char name[64];
+		snprintf(name, sizeof name, "%s%s", strncmp(val, "KEY_", 4) ? "KEY_" : "", val);
+		int code = libevdev_event_code_from_name(EV_KEY, name);
+		if (code < 0) {
+			fprintf(stderr, "postured: view-key '%s' is no key name (F2, KEY_F3, ...)\n", val);
+			return -1;
+		}
+		s->view_key = (unsigned)code;
 	} else if (!strcmp(key, "panel"))
 		snprintf(s->panel, sizeof s->panel, "%s", val);
 	else if (!strcmp(key, "init"))
@@ -192,6 +214,8 @@ defaults(struct settings *s)
 		snprintf(s->state_dir, sizeof s->state_dir, "%s/.local/state/posture", home ? home : ".");
 	s->fps = 60;
 	s->pointer_gain = 1;
+	snprintf(s->keymap, sizeof s->keymap, "us");
+	s->view_key = KEY_F2;
 }
 
 int
@@ -237,6 +261,7 @@ main(int argc, char **argv)
 				   s.tcp, s.token, s.init[0] ? s.init : NULL,
 				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL,
 				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs,
-				   s.grab, s.pointer_gain, s.hotplug[0] ? s.hotplug : NULL };
+				   s.grab, s.pointer_gain, s.hotplug[0] ? s.hotplug : NULL,
+				   s.keymap, s.view_key };
 	return loop_run(&cfg);
 }

@@ -104,6 +104,16 @@ snap_pick(struct modes *M, int v, struct camera *cam)
 	viewctl_snap_to(&M->viewctl[v], cam, hit ? h.point : NULL, modes_now(M));
 }
 
+/* a step of the mode begins ('B') or ends ('E'): one undoable, journaled change */
+static void
+mode_step(struct modes *M, char end, uint64_t now_us)
+{
+	if (end == 'B')
+		M->step_began_us = now_us;
+	if (M->d->mode_step)
+		M->d->mode_step(M->d, end);
+}
+
 /*
  * Change view takes the event first (V enters it from any mode; inside,
  * everything is its own). Returns 1 when it took the event.
@@ -134,9 +144,19 @@ drive_view(struct modes *M, const struct input_event_rec *e, long px, long py)
 	case VIEWCTL_ENDED:
 		store_camera(M, v, &cam);
 		journal_camera(M, v);
+		if (M->view_step) { /* change view was one step: one undo takes the view back */
+			M->view_step = 0;
+			mode_step(M, 'E', 0);
+		}
+		break;
+	case VIEWCTL_ENTERED:
+		if (!M->d->step.open) {
+			mode_step(M, 'B', modes_now(M));
+			M->view_step = 1;
+		}
+		M->scene->dirty = 1;
 		break;
 	case VIEWCTL_TAKEN:
-	case VIEWCTL_ENTERED:
 		M->scene->dirty = 1;
 		break;
 	}
@@ -179,15 +199,6 @@ end_drag(struct modes *M)
 		env_remove_constraint(&M->d->env, con);
 }
 
-/* a step of the mode begins ('B') or ends ('E'): one undoable, journaled change */
-static void
-mode_step(struct modes *M, char end, uint64_t now_us)
-{
-	if (end == 'B')
-		M->step_began_us = now_us;
-	if (M->d->mode_step)
-		M->d->mode_step(M->d, end);
-}
 
 static int
 is_mouse_button(const struct input_event_rec *e)
@@ -464,9 +475,10 @@ drive_mode(struct modes *M, const struct input_event_rec *e, long px, long py)
 	view_camera_of_view(vw, &cam);
 	enum interact_mode mode = ia->mode;
 	/* the first button down begins a step, the last one up ends it */
-	if (is_mouse_button(e) && e->value == 1 && !interact_buttons(ia))
-		mode_step(M, 'B', modes_now(M));
+	int first_press = is_mouse_button(e) && e->value == 1 && !interact_buttons(ia);
 	int r = interact_input(ia, e, px, py, &cam, vw->width, vw->height);
+	if (first_press && interact_buttons(ia)) /* a press never moves G: the state is still before */
+		mode_step(M, 'B', modes_now(M));
 	if (((r & INTERACT_RELEASED) && !interact_buttons(ia)) || (r & INTERACT_ENDED))
 		M->step_end_due = 1;
 	if (r)
@@ -503,12 +515,71 @@ drive_mode(struct modes *M, const struct input_event_rec *e, long px, long py)
 	end_step_if_due(M);
 }
 
+/* change view is running in the view the keys would go to */
+static int
+viewing(const struct modes *M)
+{
+	int v = current_view(M);
+	return v >= 0 && M->viewctl[v].state != VIEWCTL_IDLE;
+}
+
+/* the change-view key at the edit line: change view entered as V enters it from a mode */
+static void
+enter_change_view(struct modes *M, const struct input_event_rec *e)
+{
+	struct input_event_rec v = *e;
+	v.code = KEY_V;
+	v.value = 1;
+	drive_view(M, &v, 0, 0);
+}
+
+/*
+ * The keyboard's events go to the kiosk first (the edit line, a value
+ * typed in a mode, undo and redo); 1 when it took the event.
+ */
+static int
+drive_kiosk(struct modes *M, const struct input_event_rec *e)
+{
+	if (!M->kiosk)
+		return 0;
+	enum kiosk_keys keys = viewing(M) ? KIOSK_KEYS_OTHER
+				: M->interact.mode != INTERACT_NONE ? KIOSK_KEYS_MODE
+								     : KIOSK_KEYS_LINE;
+	struct kiosk_action a = kiosk_input(M->kiosk, e, keys);
+	char line[EDITLINE_MAX + 32];
+	switch (a.kind) {
+	case KIOSK_NONE:
+		return 0;
+	case KIOSK_TAKEN:
+		break;
+	case KIOSK_RUN:
+		M->run_typed(M->ctx, a.line);
+		break;
+	case KIOSK_VALUE:
+		snprintf(line, sizeof line, "set manip %s", a.line);
+		M->run_typed(M->ctx, line);
+		break;
+	case KIOSK_UNDO:
+	case KIOSK_REDO:
+		M->run_typed(M->ctx, a.kind == KIOSK_UNDO ? "undo" : "redo");
+		break;
+	case KIOSK_CHANGE_VIEW:
+		enter_change_view(M, e);
+		break;
+	}
+	M->scene->dirty = 1;
+	return 1;
+}
+
 void
 modes_input(struct modes *M, const struct input_event_rec *e, long px, long py)
 {
 	track_pointer(M, e, px, py);
-	if (!drive_view(M, e, px, py))
+	enum interact_mode was = M->interact.mode;
+	if (!drive_kiosk(M, e) && !drive_view(M, e, px, py))
 		drive_mode(M, e, px, py);
+	if (was != INTERACT_NONE && M->interact.mode == INTERACT_NONE && M->kiosk)
+		kiosk_mode_ended(M->kiosk);
 }
 
 /*

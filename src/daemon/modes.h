@@ -17,6 +17,7 @@
 #include "daemon/scene.h"
 #include "devices/event.h"
 #include "interact/interact.h"
+#include "interact/kiosk.h"
 #include "interact/view_adjust.h"
 #include "interact/viewctl.h"
 
@@ -42,8 +43,12 @@ struct modes {
 	int nundo_view[ENV_MAX_VIEWS];
 	int pointer_view;                      /* the view the pointer was last in, -1: none yet */
 	unsigned char own_parts[MODES_MAX_SEGMENTS]; /* §3.7.1: the parts around G, left out */
+	struct kiosk *kiosk;    /* the keyboard's edit line; NULL: keys go to the modes alone */
+	/* runs a line typed at the kiosk (journaled, its outcome on the message line) */
+	void (*run_typed)(void *ctx, const char *line);
 	uint64_t step_began_us; /* when the step's first button went down */
 	int step_end_due;       /* the last button came up: end the step once it is applied */
+	int view_step;          /* change view began a step of its own: its end ends it */
 	double pointer_x, pointer_y;
 };
 

@@ -136,6 +136,32 @@ scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3], const
 	return sc->hemi;
 }
 
+/*
+ * The kiosk's edit line in place of the status while something is typed:
+ * "> " and the line (or "value: " and a value typed in a mode), the part
+ * of it that fits the view's width. Returns the caret's column, or -1
+ * when nothing is typed (dest untouched).
+ */
+static int
+edit_line(struct daemon *d, int width, char *dest, size_t len)
+{
+	if (!d->kiosk)
+		return -1;
+	const struct editline *el = kiosk_line(d->kiosk);
+	int value = kiosk_typing_value(d->kiosk);
+	if (!editline_text(el)[0] && !value)
+		return -1;
+	const char *prompt = value ? "value: " : "> ";
+	int plen = (int)strlen(prompt);
+	int cols = (width - 12) / VIEW_CHAR_PX - plen;
+	if (cols > (int)len - plen - 1)
+		cols = (int)len - plen - 1;
+	struct editline_window w;
+	kiosk_visible(d->kiosk, cols, &w);
+	snprintf(dest, len, "%s%.*s", prompt, (int)w.len, w.text);
+	return plen + w.cursor_col;
+}
+
 int
 scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
 	   size_t errlen)
@@ -165,12 +191,16 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	}
 	if (manipulating)
 		scene_add_manip(sc->dl, ia);
-	char status[200];
-	snprintf(status, sizeof status, "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
-		 vw->name, (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
-		 d->stats.draw_us / 1000);
+	char status[VIEW_TEXT_LEN];
+	int caret = edit_line(d, vw->width, status, sizeof status);
+	if (caret < 0)
+		snprintf(status, sizeof status,
+			 "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
+			 (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
+			 d->stats.draw_us / 1000);
 	/* the operator's refusal, while there is one, over the daemon's message */
-	view_add_status(sc->dl, status, manipulating && ia->message[0] ? ia->message : d->message, 0);
+	view_add_status(sc->dl, status, manipulating && ia->message[0] ? ia->message : d->message,
+			caret);
 	if (render_frame(sc->r, sc->dl, d->stats.frame, &sc->frame) < 0) {
 		snprintf(err, errlen, "render_frame failed");
 		return -1;

@@ -468,7 +468,7 @@ rect(struct drawlist *dl, double x0, double y0, double x1, double y1, const uint
 }
 
 void
-view_add_status(struct drawlist *dl, const char *status, const char *message, int edit)
+view_add_status(struct drawlist *dl, const char *status, const char *message, int caret)
 {
 	static const uint8_t c_status[4] = { 255, 255, 255, 255 }, c_msg[4] = { 255, 236, 170, 255 };
 	static const uint8_t c_sband[4] = { 20, 24, 32, 200 }, c_mband[4] = { 20, 24, 32, 150 };
@@ -484,10 +484,15 @@ view_add_status(struct drawlist *dl, const char *status, const char *message, in
 		double a[3] = { 0, top + 0.5, 0 }, b[3] = { w, top + 0.5, 0 };
 		view_line(dl, a, b, C_BAND);
 	}
-	if (status) {
-		char line[VIEW_TEXT_LEN];
-		snprintf(line, sizeof line, "%s%s", status, edit ? "_" : "");
-		view_add_text(dl, 6, h - VIEW_LINE_PX + base, line, c_status, VIEW_ALIGN_LEFT);
+	if (status)
+		view_add_text(dl, 6, h - VIEW_LINE_PX + base, status, c_status, VIEW_ALIGN_LEFT);
+	if (status && caret >= 0 && caret < VIEW_TEXT_LEN - 1) {
+		/* as many spaces as characters before it: monospaced, the caret lands under its cell */
+		char under[VIEW_TEXT_LEN];
+		memset(under, ' ', (size_t)caret);
+		under[caret] = '_';
+		under[caret + 1] = '\0';
+		view_add_text(dl, 6, h - VIEW_LINE_PX + base + 2, under, c_status, VIEW_ALIGN_LEFT);
 	}
 	if (message)
 		view_add_text(dl, 6, h - 2 * VIEW_LINE_PX + base, message, c_msg, VIEW_ALIGN_LEFT);

@@ -38,6 +38,7 @@
 
 /* text metrics the overlay builders assume; render loads the font at this size */
 #define VIEW_FONT_PX 14
+#define VIEW_CHAR_PX 9 /* at least a character's advance: DejaVu Sans Mono's 0.6 em at 14 px */
 #define VIEW_LINE_PX 20      /* height of a status or message band */
 
 struct camera {
@@ -327,10 +328,11 @@ int view_add_balance(struct drawlist *dl, const struct model *m, const struct st
 
 /*
  * The status / edit line at the bottom of the picture and the message line
- * above it (§1.7), on dark translucent bands; either may be NULL. A caret
- * follows the status text when edit is set.
+ * above it (§1.7), on dark translucent bands; either may be NULL. caret >=
+ * 0: the edit line's cursor, under that character of status (the font is
+ * monospaced, a character a column); -1: none.
  */
-void view_add_status(struct drawlist *dl, const char *status, const char *message, int edit);
+void view_add_status(struct drawlist *dl, const char *status, const char *message, int caret);
 
 /* the mouse pointer: an arrow with its tip at pixel (x, y) */
 void view_add_pointer(struct drawlist *dl, double x, double y);
