@@ -919,6 +919,9 @@ feed_valuator(struct dial_bind *t, const struct input_event_rec *e, struct dial_
 		t->overflow++;
 		return 0;
 	}
+	/* a zero gain, or a product below the smallest double, moves nothing */
+	if (delta == 0)
+		return 0;
 	struct dial_action a = { .kind = DIAL_ACTION_MOVE, .binding = k, .target = &d->target,
 				 .delta = delta };
 	return emit(t, &a, dest, max);

@@ -16,7 +16,8 @@
  * stays, so jitter below the dead zone never moves anything while a slow
  * turn still adds up until it passes. A stale event gives nothing and
  * forgets P. NaN or infinite values, and changes whose delta would not be
- * finite, are counted and give nothing (the latter moves P to V).
+ * finite, are counted and give nothing (the latter moves P to V); a delta
+ * of zero (a zero gain) gives nothing either.
  *
  * The file, one statement per line; '#' outside double quotes starts a
  * comment; blank lines are skipped. Words are split as the protocol splits
