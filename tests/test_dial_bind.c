@@ -192,7 +192,8 @@ test_every_target_and_unit(void **unused)
 		 "button BTN_0 \"undo\"\n"
 		 "button BTN_1 \"settle frames=30\" on=release\n"
 		 "button 0x2ff \"say \\\"a # b\\\" \\\\\" on=press\n"
-		 "button 300 undo\t# a bare command\n",
+		 "button 300 undo\t# a bare command\n"
+		 "button BTN_A redo\n",
 		 &table);
 	assert_int_equal(table.ndial, 4);
 	const struct dial_bind_dial *d = table.dial;
@@ -215,7 +216,7 @@ test_every_target_and_unit(void **unused)
 	assert_string_equal(d[3].target.joint, "elbow_r");
 	assert_int_equal(d[3].target.dof, 5);
 	assert_near(d[3].gain, 0.02, 1e-18);
-	assert_int_equal(table.nbutton, 4);
+	assert_int_equal(table.nbutton, 5);
 	assert_int_equal(table.button[0].code, BTN_0);
 	assert_string_equal(table.button[0].command, "undo");
 	assert_int_equal(table.button[0].edge, DIAL_EDGE_PRESS);
@@ -226,6 +227,9 @@ test_every_target_and_unit(void **unused)
 	assert_string_equal(table.button[2].command, "say \"a # b\" \\");
 	assert_int_equal(table.button[3].code, 300);
 	assert_string_equal(table.button[3].command, "undo");
+	/* an alias of the map's table: the gamepad's A is BTN_SOUTH */
+	assert_int_equal(table.button[4].code, BTN_A);
+	assert_int_equal(table.button[4].code, BTN_SOUTH);
 
 	/* the rest of the targets; gains bare, in rad, m, cm, mm; the default gain */
 	parse_with("bindings 1\n"

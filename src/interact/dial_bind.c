@@ -154,33 +154,6 @@ name_valid(const char *s, size_t max)
 
 /* ---- buttons ---- */
 
-/* a BTN_* name of can_map's table, or an evdev code 1..KEY_MAX in decimal or 0x hex */
-static int
-button_parse(const char *s, uint16_t *dest)
-{
-	if (!strncmp(s, "BTN_", 4)) {
-		for (unsigned c = 1; c <= KEY_MAX; c++) {
-			const char *name = can_map_code_to_str((uint16_t)c);
-			if (name && !strcmp(name, s)) {
-				*dest = (uint16_t)c;
-				return 0;
-			}
-		}
-		return -1;
-	}
-	int hex = s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
-	const char *digits = hex ? s + 2 : s;
-	if (!(hex ? isxdigit((unsigned char)*digits) : isdigit((unsigned char)*digits)))
-		return -1;
-	char *end;
-	errno = 0;
-	unsigned long v = strtoul(digits, &end, hex ? 16 : 10);
-	if (*end || errno || v == 0 || v > KEY_MAX)
-		return -1;
-	*dest = (uint16_t)v;
-	return 0;
-}
-
 static void
 button_write(char *dest, size_t n, uint16_t code)
 {
@@ -430,7 +403,7 @@ button_binding_parse(const char *const *w, int n, struct dial_bind_button *b)
 	memset(b, 0, sizeof *b);
 	if (n < 3)
 		return "button BUTTON COMMAND [on=press|release]";
-	if (button_parse(w[1], &b->code))
+	if (can_map_code_parse(w[1], &b->code))
 		return "a button is a BTN_* name or an evdev code 1..0x2ff";
 	if (!command_valid(w[2]))
 		return "a command is 1..1023 bytes without control characters";
@@ -765,7 +738,7 @@ unbind(struct dial_bind *t, const char *const *w, int n, char *buf, size_t bufle
 	if (n >= 2 && !strcmp(w[0], "button")) {
 		uint16_t code;
 		uint8_t edge = 0;
-		if (n > 3 || button_parse(w[1], &code) || (n == 3 && edge_parse(w[2], &edge)))
+		if (n > 3 || can_map_code_parse(w[1], &code) || (n == 3 && edge_parse(w[2], &edge)))
 			return "unbind button BUTTON [on=press|release]";
 		int want_press = n == 2 || edge == DIAL_EDGE_PRESS;
 		int want_release = n == 2 || edge == DIAL_EDGE_RELEASE;

@@ -50,8 +50,8 @@
  *            default 1
  *   invert   reverses the dial's sense
  *   dead=D   the dead zone, in the dial's own units: finite, >= 0; default 0
- *   BUTTON   a BTN_* name (can_map_code_to_str's table) or an evdev code
- *            1..0x2ff (decimal or 0x hex)
+ *   BUTTON   as the panel map's code= takes it: a BTN_* name or an evdev
+ *            code 1..0x2ff (can_map_code_parse)
  *   COMMAND  the command line run on the press, or with on=release on the
  *            release: 1..1023 bytes, no control characters (quote it when it
  *            has spaces). A button may have one press and one release command
