@@ -76,21 +76,26 @@ turn(int code, double x, struct dial_action *a)
 }
 
 /* feeds a value that must give exactly one move, and returns its delta */
+#define moved(code, x) moved_at((code), (x), __LINE__)
 static double
-moved(int code, double x)
+moved_at(int code, double x, int line)
 {
 	struct dial_action a;
-	assert_int_equal(turn(code, x, &a), 1);
-	assert_int_equal(a.kind, DIAL_ACTION_MOVE);
+	int n = turn(code, x, &a);
+	if (n != 1 || a.kind != DIAL_ACTION_MOVE)
+		fail_msg("line %d: dial %d to %g gave %d actions, not one move", line, code, x, n);
 	return a.delta;
 }
 
 /* feeds a value that must give nothing */
+#define still(code, x) still_at((code), (x), __LINE__)
 static void
-still(int code, double x)
+still_at(int code, double x, int line)
 {
 	struct dial_action a;
-	assert_int_equal(turn(code, x, &a), 0);
+	int n = turn(code, x, &a);
+	if (n)
+		fail_msg("line %d: dial %d to %g moved %g", line, code, x, a.delta);
 }
 
 /* the command a button event gives, or NULL */

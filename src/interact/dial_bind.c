@@ -434,7 +434,7 @@ button_find(const struct dial_bind *t, uint16_t code, uint8_t edge)
 	return -1;
 }
 
-/* the dial's code through lookup; -1 with a message when the panel has no such dial */
+/* the dial's code through lookup (-1 without one); a message when the panel has no such dial */
 static const char *
 dial_resolve(struct dial_bind_dial *d, const struct dial_bind_lookup *lookup, char *buf,
 	     size_t buflen)

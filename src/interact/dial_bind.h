@@ -224,8 +224,9 @@ void dial_bind_init(struct dial_bind *dest);
 
 /*
  * Parses n bytes of bindings text; name is the file name used in messages.
- * Names are resolved through lookup (NULL: left unresolved). Returns 0 with
- * *dest replaced (references forgotten, counters kept), or -1 with
+ * Names are resolved through lookup (NULL: left unresolved). *dest must
+ * hold a table (dial_bind_init's or a parse's). Returns 0 with *dest
+ * replaced (references forgotten, counters kept), or -1 with
  * "name:line: message" in err and *dest unchanged.
  */
 int dial_bind_parse(const char *text, size_t n, const char *name,
