@@ -218,8 +218,8 @@ field_parse(const char *tok, struct can_map_line *l)
 	return NULL;
 }
 
-static int
-code_parse(const char *s, uint16_t *dest)
+int
+can_map_code_parse(const char *s, uint16_t *dest)
 {
 	for (size_t i = 0; i < sizeof btn_names / sizeof btn_names[0]; i++) {
 		if (strcmp(btn_names[i].name, s) == 0) {
@@ -343,7 +343,7 @@ options_parse(char **tok, int ntok, struct can_map *m, struct can_map_line *l, i
 		case 5:
 			if (l->kind != CAN_MAP_BUTTON)
 				return "code= is for button lines";
-			if (code_parse(val, &l->code))
+			if (can_map_code_parse(val, &l->code))
 				return "code= needs a BTN_* name or a code 1..0x2ff";
 			*has_code = 1;
 			break;

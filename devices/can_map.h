@@ -134,4 +134,10 @@ int can_map_find(const struct can_map *m, const char *name);
 /* the BTN_* name of an evdev button code, or NULL when it has none in the map's table */
 const char *can_map_code_to_str(uint16_t code);
 
+/*
+ * A button as code= takes it: a BTN_* name of that table (aliases such as
+ * BTN_A too) or a code 1..KEY_MAX (strtoul's base 0). Returns 0, or -1.
+ */
+int can_map_code_parse(const char *s, uint16_t *dest);
+
 #endif
