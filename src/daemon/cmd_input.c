@@ -6,6 +6,8 @@
 #include <libevdev/libevdev.h>
 #include <linux/input-event-codes.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "daemon/cmd_ctx.h"
@@ -102,8 +104,12 @@ cmd_input_button(struct cmd_ctx *c)
 	for (size_t i = 0; i < sizeof buttons / sizeof *buttons; i++)
 		if (!strcmp(c->argv[0], buttons[i].name))
 			code = buttons[i].code;
+	/* any other button by the kernel's name: a panel's (BTN_TRIGGER_HAPPY1), a joystick's */
+	if (code < 0 && !strncmp(c->argv[0], "BTN_", 4))
+		code = libevdev_event_code_from_name(EV_KEY, c->argv[0]);
 	if (code < 0)
-		return cmd_fail(c, "bad-argument", "buttons are left, middle, right and side");
+		return cmd_fail(c, "bad-argument",
+				"buttons are left, middle, right, side, or a BTN_ name of the kernel's");
 	int down = down_up(c, c->argv[1]);
 	if (down < 0)
 		return -1;
@@ -311,5 +317,59 @@ cmd_get_kiosk(struct cmd_ctx *c)
 	json_object_set_new(c->result, "keymap", json_string(c->d->keymap));
 	const char *key = libevdev_event_code_get_name(EV_KEY, kiosk_view_key(k));
 	json_object_set_new(c->result, "viewkey", json_string(key ? key : "?"));
+	return 0;
+}
+
+/* bind dial|button ..., unbind dial|button ...: the panel's bindings changed at run time */
+static int
+rebind(struct cmd_ctx *c, const char *verb)
+{
+	struct dial_bind *t = c->d->bindings;
+	if (!t)
+		return cmd_fail(c, "bad-argument", "this daemon has no dial panel bindings");
+	const char *w[16];
+	int n = 0;
+	w[n++] = verb;
+	for (int i = 0; i < c->argc && n < 16; i++)
+		w[n++] = c->argv[i];
+	struct dial_bind_lookup lookup = { dial_bind_find_in_map, c->d->panel };
+	char err[300];
+	if (dial_bind_command(t, w, n, c->d->panel ? &lookup : NULL, err, sizeof err) < 0)
+		return cmd_fail(c, "bad-argument", "%s", err);
+	return 0;
+}
+
+int
+cmd_bind(struct cmd_ctx *c)
+{
+	return rebind(c, "bind");
+}
+
+int
+cmd_unbind(struct cmd_ctx *c)
+{
+	return rebind(c, "unbind");
+}
+
+/* the bindings as their file would hold them, and the dials' counters */
+int
+cmd_list_bindings(struct cmd_ctx *c)
+{
+	const struct dial_bind *t = c->d->bindings;
+	if (!t)
+		return cmd_fail(c, "bad-argument", "this daemon has no dial panel bindings");
+	char *text = NULL;
+	size_t len = 0;
+	FILE *f = open_memstream(&text, &len);
+	if (!f)
+		return cmd_fail(c, "internal", "out of memory");
+	dial_bind_write(f, t);
+	fclose(f);
+	json_object_set_new(c->result, "text", json_stringn(text ? text : "", len));
+	free(text);
+	json_object_set_new(c->result, "dials", json_integer(t->ndial));
+	json_object_set_new(c->result, "buttons", json_integer(t->nbutton));
+	json_object_set_new(c->result, "nonfinite", json_integer((json_int_t)t->nonfinite));
+	json_object_set_new(c->result, "dead", json_integer((json_int_t)t->dead));
 	return 0;
 }

@@ -169,6 +169,10 @@ cmd_manipulate_joint(struct cmd_ctx *c)
 	const struct env_view *vw = mode_camera(c, v, &cam);
 	interact_start_joint(c->d->interact, fig, v, f->model, f->state, joint, &cam, vw->width,
 			     vw->height);
+	/* the joint the dial box turns from now on, in the mode and after it */
+	c->d->picked.fig = fig;
+	c->d->picked.gen = f->gen;
+	c->d->picked.joint = joint;
 	mode_started(c, fig, "joint", vw);
 	json_object_set_new(c->result, "dofs", json_integer(f->model->jnt_ndof[joint]));
 	return 0;

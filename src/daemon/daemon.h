@@ -12,6 +12,7 @@
 #include "devices/input_devs.h"
 #include "devices/queue.h"
 #include "draw/frame.h"
+#include "interact/dial_bind.h"
 #include "interact/interact.h"
 #include "interact/kiosk.h"
 #include "interact/pick.h"
@@ -112,6 +113,14 @@ struct daemon {
 	int (*set_input)(struct daemon *d, int grab, double gain);
 	/* the interactive mode the input drives (manipulate ...); NULL: none taken */
 	struct interact *interact;
+	/* the joint the dial box turns: the last `manipulate joint`'s (fig -1: none) */
+	struct {
+		int fig;
+		uint32_t gen;
+		int joint;
+	} picked;
+	/* the dial panel's bindings (bind, list bindings); NULL: none */
+	struct dial_bind *bindings;
 	/* the kiosk's keyboard and edit line, and its layout's name; NULL: none */
 	struct kiosk *kiosk;
 	char keymap[128];

@@ -14,6 +14,7 @@
 
 #include "daemon/cmd.h"
 #include "daemon/complete.h"
+#include "daemon/dials.h"
 #include "daemon/events.h"
 #include "daemon/modes.h"
 #include "daemon/notify.h"
@@ -32,6 +33,7 @@ struct loop {
 	struct server srv;
 	struct journal j;
 	struct complete complete; /* Tab at the kiosk's edit line */
+	struct dials dials;       /* the dial panel's bindings at work */
 	int sig_fd;
 	uint64_t period_us;
 	uint64_t synced_seq;  /* the last journal record known to be on disk */
@@ -176,6 +178,7 @@ take_input(struct loop *L)
 					"('set input grab=yes' takes it again)\n");
 		}
 		events_input(&L->events, &e, px, py);
+		dials_input(&L->dials, &e);
 		modes_input(&L->modes, &e, px, py);
 	}
 	events_kiosk(&L->events);
@@ -442,6 +445,7 @@ live_frame(struct loop *L)
 	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
 	take_input(L);
 	modes_frame(&L->modes, real_now(NULL));
+	dials_frame(&L->dials, real_now(NULL));
 	events_kiosk(&L->events);
 	frame(L, &clock, budget, &changed);
 	uint64_t now = real_now(NULL);
@@ -477,6 +481,11 @@ announce_devices(struct loop *L)
 		if (!L->d.panel && p->be == &input_backend_can && ((const struct can_dev *)p->dev)->map) {
 			L->panel = *((const struct can_dev *)p->dev)->map;
 			L->d.panel = &L->panel;
+			struct dial_bind_lookup lookup = { dial_bind_find_in_map, L->d.panel };
+			int left = dial_bind_resolve(&L->dials.table, &lookup);
+			if (left > 0)
+				fprintf(stderr, "postured: %d dial bindings name no dial of %s's map\n",
+					left, p->info.path);
 		}
 	}
 }
@@ -558,6 +567,9 @@ loop_run(const struct loop_config *cfg)
 	L->d.set_input = set_input;
 	modes_init(&L->modes, &L->d, &L->scene, command_from_modes, L);
 	start_kiosk(L, cfg);
+	L->d.picked.fig = -1;
+	dials_init(&L->dials, &L->modes);
+	L->d.bindings = &L->dials.table;
 	L->d.interact = &L->modes.interact;
 	L->d.bring_into_view = bring_into_view;
 	L->d.mode_moved = mode_moved;
@@ -582,6 +594,11 @@ loop_run(const struct loop_config *cfg)
 	}
 	if (open_devices(L, cfg, err, sizeof err) < 0) {
 		fprintf(stderr, "postured: %s\n", err);
+		goto out;
+	}
+	/* the bindings name the dials as the panel's map does (a map arriving later renames) */
+	if (cfg->bindings && dials_load(&L->dials, cfg->bindings, L->d.panel, err, sizeof err) < 0) {
+		fprintf(stderr, "postured: bindings: %s\n", err);
 		goto out;
 	}
 	if (cfg->fb_device && !(L->scene.fb = sink_fb_open(cfg->fb_device, err, sizeof err))) {

@@ -28,6 +28,7 @@ struct loop_config {
 	const char *hotplug;       /* "udev" (NULL: the same), "kernel" or "none" (devices/hotplug.h) */
 	const char *keymap;        /* the kiosk keyboard's layout, LAYOUT[:VARIANT]; NULL: us */
 	unsigned view_key;         /* the change-view key at the edit line; 0: KEY_F2 */
+	const char *bindings;      /* the dial panel's bindings file (interact/dial_bind.h), NULL: none */
 };
 
 /* runs until SIGTERM or SIGINT; returns the process exit status */

@@ -44,6 +44,8 @@ static const char usage[] =
 	"  --keymap LAYOUT    the kiosk keyboard's layout, LAYOUT[:VARIANT] as xkb-data names\n"
 	"                     them (default us; e.g. de, fr, de:nodeadkeys)\n"
 	"  --view-key KEY     the key that enters change view from the edit line (default F2)\n"
+	"  --bindings FILE    the dial panel's bindings: dials to joints, the view, behaviours\n"
+	"                     or G, buttons to commands (see tools/panel.bindings)\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
 	"  --protocol-table   print the command table of PROTOCOL.md and exit\n"
 	"  --help             this text\n"
@@ -53,7 +55,7 @@ static const char usage[] =
 
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
-	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16], keymap[128];
+	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16], keymap[128], bindings[PATH_MAX];
 	unsigned view_key;
 	char input[INPUT_DEVS_MAX][INPUT_DEVS_SPEC_MAX];
 	const char *inputs[INPUT_DEVS_MAX];
@@ -118,6 +120,8 @@ set(struct settings *s, const char *key, const char *val)
 			return -1;
 		}
 		s->view_key = (unsigned)code;
+	} else if (!strcmp(key, "bindings")) {
+		snprintf(s->bindings, sizeof s->bindings, "%s", val);
 	} else if (!strcmp(key, "panel"))
 		snprintf(s->panel, sizeof s->panel, "%s", val);
 	else if (!strcmp(key, "init"))
@@ -262,6 +266,6 @@ main(int argc, char **argv)
 				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL,
 				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs,
 				   s.grab, s.pointer_gain, s.hotplug[0] ? s.hotplug : NULL,
-				   s.keymap, s.view_key };
+				   s.keymap, s.view_key, s.bindings[0] ? s.bindings : NULL };
 	return loop_run(&cfg);
 }

@@ -622,3 +622,26 @@ modes_frame(struct modes *M, uint64_t now_us)
 			store_camera(M, v, &cam);
 	}
 }
+
+void
+modes_set_camera(struct modes *M, int v, const struct camera *cam, int journal)
+{
+	store_camera(M, v, cam);
+	const struct env_view *vw = &M->d->env.view[v];
+	if (M->interact.mode != INTERACT_NONE && M->interact.view == v)
+		interact_camera(&M->interact, cam, vw->width, vw->height);
+	if (journal)
+		journal_camera(M, v);
+}
+
+int
+modes_current_view(const struct modes *M)
+{
+	return current_view(M);
+}
+
+void
+modes_step(struct modes *M, char end)
+{
+	mode_step(M, end, modes_now(M));
+}

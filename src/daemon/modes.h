@@ -67,4 +67,16 @@ void modes_bring_into_view(struct modes *M, int v, const double p[3]);
 /* G (or the joint) moved from outside (a snap, a typed value): what the mode moves follows */
 void modes_apply(struct modes *M);
 
+/*
+ * View v's camera moved from outside (a dial): kept in the view, the
+ * mode's operator told; journal: also journaled as `set camera`.
+ */
+void modes_set_camera(struct modes *M, int v, const struct camera *cam, int journal);
+
+/* the view the kiosk works in: the mode's, else the pointer's, else the first; -1: none */
+int modes_current_view(const struct modes *M);
+
+/* a step begins ('B') or ends ('E'), journaled (daemon.h's mode_step) */
+void modes_step(struct modes *M, char end);
+
 #endif
