@@ -48,6 +48,24 @@ cmd_entry_usage(int i)
 	return i >= 0 && i < NCMD ? table[i].usage : NULL;
 }
 
+const char *
+cmd_usage_of_line(const char *line)
+{
+	char verb[32] = "", object[32] = "";
+	if (sscanf(line, "%31s %31s", verb, object) < 1)
+		return NULL;
+	const char *bare = NULL;
+	for (int i = 0; i < NCMD; i++) {
+		if (strcmp(table[i].verb, verb))
+			continue;
+		if (!table[i].object[0])
+			bare = table[i].usage;
+		else if (!strcmp(table[i].object, object))
+			return table[i].usage;
+	}
+	return bare;
+}
+
 /* the table entry for the words, or NULL with the error set */
 static const struct cmd_entry *
 lookup(struct cmd_ctx *c, const struct words *w, int *first_arg)

@@ -40,6 +40,9 @@ const char *cmd_entry_verb(int i);
 const char *cmd_entry_object(int i);
 const char *cmd_entry_usage(int i);
 
+/* the usage of the command a line starts with (its verb, and object if it has one); NULL */
+const char *cmd_usage_of_line(const char *line);
+
 /* prints the markdown table of commands (for PROTOCOL.md) */
 void cmd_print_table(FILE *f);
 

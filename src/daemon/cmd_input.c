@@ -317,6 +317,22 @@ cmd_get_kiosk(struct cmd_ctx *c)
 	json_object_set_new(c->result, "keymap", json_string(c->d->keymap));
 	const char *key = libevdev_event_code_get_name(EV_KEY, kiosk_view_key(k));
 	json_object_set_new(c->result, "viewkey", json_string(key ? key : "?"));
+	const struct prompt_arg *a = c->d->prompt ? prompt_asking(c->d->prompt) : NULL;
+	json_t *pr = json_null();
+	if (a) {
+		pr = json_object();
+		json_object_set_new(pr, "line", json_string(prompt_line(c->d->prompt)));
+		json_object_set_new(pr, "question", json_string(a->question));
+	}
+	json_object_set_new(c->result, "prompt", pr);
+	json_t *hover = json_null();
+	if (c->d->hover_fig >= 0 && c->d->hover_fig < ENV_MAX_FIGURES && c->d->env.fig[c->d->hover_fig].gen) {
+		const struct env_figure *f = &c->d->env.fig[c->d->hover_fig];
+		hover = json_object();
+		json_object_set_new(hover, "figure", json_string(f->name));
+		json_object_set_new(hover, "segment", json_string(f->model->seg_name[c->d->hover_seg]));
+	}
+	json_object_set_new(c->result, "picked", hover);
 	return 0;
 }
 

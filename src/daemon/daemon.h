@@ -15,6 +15,7 @@
 #include "interact/dial_bind.h"
 #include "interact/interact.h"
 #include "interact/kiosk.h"
+#include "interact/prompt.h"
 #include "interact/pick.h"
 #include "pose/env.h"
 
@@ -124,6 +125,12 @@ struct daemon {
 	/* the kiosk's keyboard and edit line, and its layout's name; NULL: none */
 	struct kiosk *kiosk;
 	char keymap[128];
+	/* a command asking for its missing arguments, and what the pointer would pick; NULL: none */
+	const struct prompt *prompt;
+	int hover_fig, hover_seg;
+	/* the kiosk's pointer outside a mode: its view (-1: none yet) and pixel */
+	int pointer_view;
+	double pointer_x, pointer_y;
 	/* turns view v, eased, until p is in view (§3.7), if it is not; NULL: none */
 	void (*bring_into_view)(struct daemon *d, int v, const double p[3]);
 	/* G was set from outside (a snap): what the mode moves follows; NULL: none */

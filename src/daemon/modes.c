@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "daemon/cmd.h"
 #include "figure/kin.h"
 #include "interact/mouse_line.h"
 #include "interact/obstruct.h"
@@ -23,6 +24,10 @@ modes_init(struct modes *M, struct daemon *d, struct scene *scene,
 	M->run_command = run_command;
 	M->ctx = ctx;
 	interact_init(&M->interact);
+	M->hover_fig = M->hover_seg = -1;
+	d->prompt = &M->prompt;
+	d->hover_fig = d->hover_seg = -1;
+	d->pointer_view = -1;
 	struct viewctl_gains gains = viewctl_default_gains();
 	for (int v = 0; v < ENV_MAX_VIEWS; v++)
 		viewctl_init(&M->viewctl[v], &gains);
@@ -86,7 +91,13 @@ track_pointer(struct modes *M, const struct input_event_rec *e, long px, long py
 		const struct env_view *vw = &env->view[M->pointer_view];
 		M->pointer_x = fmin(fmax(M->pointer_x + (double)px, 0), vw->width);
 		M->pointer_y = fmin(fmax(M->pointer_y + (double)py, 0), vw->height);
+	} else {
+		return;
 	}
+	M->d->pointer_view = M->pointer_view;
+	M->d->pointer_x = M->pointer_x;
+	M->d->pointer_y = M->pointer_y;
+	M->scene->dirty = 1;
 }
 
 /* S picked: the snap's target is what lies under the pointer of view v */
@@ -533,6 +544,149 @@ enter_change_view(struct modes *M, const struct input_event_rec *e)
 	drive_view(M, &v, 0, 0);
 }
 
+/* the prompt asked its last question, or was cancelled: the pointer picks nothing now */
+static void
+prompt_over(struct modes *M)
+{
+	M->hover_fig = M->hover_seg = -1;
+	M->d->hover_fig = M->d->hover_seg = -1;
+	M->scene->dirty = 1;
+}
+
+/* what a prompt asking now would show on the message line */
+static void
+say_question(struct modes *M)
+{
+	const struct prompt_arg *a = prompt_asking(&M->prompt);
+	if (a)
+		snprintf(M->d->message, sizeof M->d->message, "%s%s", a->question,
+			 a->kind <= PROMPT_VIEW ? " (pick it, or type it; ESC cancels)" : " (ESC cancels)");
+}
+
+/* an answer to the prompt: the next question, or the whole line run */
+static void
+answer(struct modes *M, const char *word)
+{
+	int r = prompt_answer(&M->prompt, word);
+	if (r == 1) {
+		prompt_over(M);
+		M->run_typed(M->ctx, prompt_line(&M->prompt));
+	} else {
+		say_question(M);
+	}
+	M->scene->dirty = 1;
+}
+
+/*
+ * Enter at the edit line: the answer to a prompt asking; else the line,
+ * run when it is whole, or its missing arguments asked for first.
+ */
+static void
+line_entered(struct modes *M, const char *line)
+{
+	if (M->prompt.active) {
+		answer(M, line);
+		return;
+	}
+	const char *usage = cmd_usage_of_line(line);
+	if (usage && prompt_begin(&M->prompt, usage, line) == 1) {
+		say_question(M);
+		return;
+	}
+	M->run_typed(M->ctx, line);
+}
+
+/* what lies under the pointer of view v: figure and segment, with the hit; 0 on nothing */
+static int
+under_pointer(struct modes *M, struct pick_hit *h, int *fig)
+{
+	int v = M->pointer_view;
+	if (v < 0 || !M->d->env.view[v].used)
+		return 0;
+	const struct env_view *vw = &M->d->env.view[v];
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	struct ray r;
+	return mouse_line(&cam, vw->width, vw->height, M->pointer_x, M->pointer_y, &r) == 0 &&
+	       daemon_pick(M->d, &r, cam.znear, -1, h, fig) > 0;
+}
+
+/* the word the pointer picks for the question asked: a figure's, a joint's, a site's, a view's */
+static int
+picked_word(struct modes *M, const struct prompt_arg *a, char *dest, size_t len)
+{
+	if (a->kind == PROMPT_VIEW) {
+		if (M->pointer_view < 0 || !M->d->env.view[M->pointer_view].used)
+			return 0;
+		snprintf(dest, len, "%s", M->d->env.view[M->pointer_view].name);
+		return 1;
+	}
+	struct pick_hit h;
+	int fig;
+	if (!under_pointer(M, &h, &fig))
+		return 0;
+	const struct env_figure *f = &M->d->env.fig[fig];
+	if (a->kind == PROMPT_FIGURE) {
+		snprintf(dest, len, "%s", f->name);
+	} else if (a->kind == PROMPT_SITE && h.site >= 0) {
+		model_site_fullname(f->model, h.site, dest, len);
+	} else if (a->kind == PROMPT_JOINT) {
+		/* the joint above the segment; the root segment's: the one it hangs the rest from */
+		int j = f->state->seg_root_joint[h.segment];
+		for (int k = 0; j < 0 && k < f->model->njnt; k++)
+			if (f->model->site_seg[f->model->jnt_site_from[k]] == h.segment ||
+			    f->model->site_seg[f->model->jnt_site_to[k]] == h.segment)
+				j = k;
+		if (j < 0)
+			return 0;
+		snprintf(dest, len, "%s", f->model->jnt_name[j]);
+	} else {
+		return 0;
+	}
+	return 1;
+}
+
+/*
+ * While a prompt asks for something the pointer can pick: what is under
+ * the pointer is highlighted as it moves, and a left click answers.
+ * Returns 1 when the event was the prompt's.
+ */
+static int
+drive_prompt(struct modes *M, const struct input_event_rec *e)
+{
+	const struct prompt_arg *a = prompt_asking(&M->prompt);
+	if (!a || M->interact.mode != INTERACT_NONE || viewing(M))
+		return 0;
+	if (e->kind == INPUT_KEY && e->code == KEY_ESC && e->value == 1) {
+		prompt_cancel(&M->prompt);
+		prompt_over(M);
+		if (M->kiosk)
+			kiosk_clear(M->kiosk);
+		snprintf(M->d->message, sizeof M->d->message, "cancelled: nothing changed");
+		return 1;
+	}
+	if (a->kind > PROMPT_VIEW)
+		return 0;
+	if (e->kind == INPUT_MOTION || e->kind == INPUT_POINTER) {
+		struct pick_hit h;
+		int fig = -1;
+		int hit = a->kind != PROMPT_VIEW && under_pointer(M, &h, &fig);
+		M->hover_fig = M->d->hover_fig = hit ? fig : -1;
+		M->hover_seg = M->d->hover_seg = hit ? h.segment : -1;
+		M->scene->dirty = 1;
+		return 0; /* the pointer goes on moving for everyone */
+	}
+	if (e->kind == INPUT_BUTTON && e->code == BTN_LEFT && e->value == 1) {
+		char word[128];
+		if (picked_word(M, a, word, sizeof word))
+			answer(M, word);
+		else
+			snprintf(M->d->message, sizeof M->d->message, "nothing there: %s", a->question);
+		return 1;
+	}
+	return e->kind == INPUT_BUTTON && e->code == BTN_LEFT; /* its release too */
+}
+
 /*
  * The keyboard's events go to the kiosk first (the edit line, a value
  * typed in a mode, undo and redo); 1 when it took the event.
@@ -553,7 +707,7 @@ drive_kiosk(struct modes *M, const struct input_event_rec *e)
 	case KIOSK_TAKEN:
 		break;
 	case KIOSK_RUN:
-		M->run_typed(M->ctx, a.line);
+		line_entered(M, a.line);
 		break;
 	case KIOSK_VALUE:
 		snprintf(line, sizeof line, "set manip %s", a.line);
@@ -576,7 +730,7 @@ modes_input(struct modes *M, const struct input_event_rec *e, long px, long py)
 {
 	track_pointer(M, e, px, py);
 	enum interact_mode was = M->interact.mode;
-	if (!drive_kiosk(M, e) && !drive_view(M, e, px, py))
+	if (!drive_prompt(M, e) && !drive_kiosk(M, e) && !drive_view(M, e, px, py))
 		drive_mode(M, e, px, py);
 	if (was != INTERACT_NONE && M->interact.mode == INTERACT_NONE && M->kiosk)
 		kiosk_mode_ended(M->kiosk);

@@ -18,6 +18,7 @@
 #include "devices/event.h"
 #include "interact/interact.h"
 #include "interact/kiosk.h"
+#include "interact/prompt.h"
 #include "interact/view_adjust.h"
 #include "interact/viewctl.h"
 
@@ -44,6 +45,8 @@ struct modes {
 	int pointer_view;                      /* the view the pointer was last in, -1: none yet */
 	unsigned char own_parts[MODES_MAX_SEGMENTS]; /* §3.7.1: the parts around G, left out */
 	struct kiosk *kiosk;    /* the keyboard's edit line; NULL: keys go to the modes alone */
+	struct prompt prompt;   /* a command asking for its missing arguments */
+	int hover_fig, hover_seg; /* what a prompt would pick under the pointer (-1: nothing) */
 	/* runs a line typed at the kiosk (journaled, its outcome on the message line) */
 	void (*run_typed)(void *ctx, const char *line);
 	uint64_t step_began_us; /* when the step's first button went down */

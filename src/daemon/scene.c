@@ -137,6 +137,35 @@ scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3], const
 }
 
 /*
+ * What a prompt would pick under the pointer: its segment's bounding box
+ * as the picking sees it, drawn through everything (x-ray) so it shows
+ * where the pointer is even behind another part.
+ */
+static void
+add_hover(struct scene *sc, struct daemon *d)
+{
+	int fig = d->hover_fig, seg = d->hover_seg;
+	if (fig < 0 || fig >= ENV_MAX_FIGURES || !d->env.fig[fig].gen)
+		return;
+	const struct pick_model *pm = daemon_pick_model(d, fig);
+	if (!pm || seg < 0 || seg >= pm->nseg)
+		return;
+	static const uint8_t yellow[4] = { 255, 220, 40, 255 };
+	const double *lo = &pm->seg_lo[3 * seg], *hi = &pm->seg_hi[3 * seg];
+	const struct xform *x = &d->env.fig[fig].state->seg_xf[seg];
+	double c[8][3];
+	for (int k = 0; k < 8; k++) {
+		double p[3] = { k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2] };
+		xform_apply(x, p, c[k]);
+	}
+	view_batch_begin(sc->dl, VIEW_LINES, VIEW_WORLD, 2, 1);
+	for (int k = 0; k < 8; k++)
+		for (int b = 1; b < 8; b <<= 1)
+			if (!(k & b)) /* each edge once: from the corner with the bit clear */
+				view_line(sc->dl, c[k], c[k | b], yellow);
+}
+
+/*
  * The kiosk's edit line in place of the status while something is typed:
  * "> " and the line (or "value: " and a value typed in a mode), the part
  * of it that fits the view's width. Returns the caret's column, or -1
@@ -149,9 +178,14 @@ edit_line(struct daemon *d, int width, char *dest, size_t len)
 		return -1;
 	const struct editline *el = kiosk_line(d->kiosk);
 	int value = kiosk_typing_value(d->kiosk);
-	if (!editline_text(el)[0] && !value)
+	const struct prompt_arg *asking = d->prompt ? prompt_asking(d->prompt) : NULL;
+	if (!editline_text(el)[0] && !value && !asking)
 		return -1;
-	const char *prompt = value ? "value: " : "> ";
+	/* a prompt shows the line so far and its question before what is typed */
+	char ask[VIEW_TEXT_LEN];
+	if (asking)
+		snprintf(ask, sizeof ask, "%.60s  %.60s ", prompt_line(d->prompt), asking->question);
+	const char *prompt = asking ? ask : value ? "value: " : "> ";
 	int plen = (int)strlen(prompt);
 	int cols = (width - 12) / VIEW_CHAR_PX - plen;
 	if (cols > (int)len - plen - 1)
@@ -191,6 +225,10 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	}
 	if (manipulating)
 		scene_add_manip(sc->dl, ia);
+	add_hover(sc, d);
+	/* outside a mode the kiosk's pointer is drawn where it is (a mode draws its own) */
+	if (!(ia && ia->mode != INTERACT_NONE) && d->pointer_view == v)
+		view_add_pointer(sc->dl, d->pointer_x, d->pointer_y);
 	char status[VIEW_TEXT_LEN];
 	int caret = edit_line(d, vw->width, status, sizeof status);
 	if (caret < 0)

@@ -128,6 +128,14 @@ drop_value(struct kiosk *k)
 }
 
 void
+kiosk_clear(struct kiosk *k)
+{
+	struct kbd_text_key esc = { .ctl = KBD_CTL_ESCAPE };
+	editline_key(&k->line, &esc);
+	drop_value(k);
+}
+
+void
 kiosk_mode_ended(struct kiosk *k)
 {
 	drop_value(k);

@@ -83,6 +83,9 @@ enum kiosk_keys {
 struct kiosk_action kiosk_input(struct kiosk *k, const struct input_event_rec *e,
 				enum kiosk_keys keys);
 
+/* what is typed goes (a command cancelled under it) */
+void kiosk_clear(struct kiosk *k);
+
 /* the mode ended (ESC, or from elsewhere): a value half typed goes with it */
 void kiosk_mode_ended(struct kiosk *k);
 
