@@ -179,9 +179,27 @@ apply_move(struct dials *D, const struct dial_target *t, double delta)
 	return 0;
 }
 
+/* the dials' step over: the view they turned journaled, one undo for the turn */
+static void
+end_turn(struct dials *D)
+{
+	int v = modes_current_view(D->M);
+	if (D->camera_moved && v >= 0) {
+		struct camera cam;
+		view_camera_of_view(&D->M->d->env.view[v], &cam);
+		modes_set_camera(D->M, v, &cam, 1);
+	}
+	D->camera_moved = 0;
+	D->stepping = 0;
+	modes_step(D->M, 'E');
+}
+
 int
 dials_input(struct dials *D, const struct input_event_rec *e)
 {
+	/* a key or a button is the person doing something else: the turn is over */
+	if (D->stepping && (e->kind == INPUT_KEY || e->kind == INPUT_BUTTON))
+		end_turn(D);
 	struct dial_action a[4];
 	int n = dial_bind_feed(&D->table, e, a, 4), moved = 0;
 	for (int i = 0; i < n; i++) {
@@ -210,13 +228,5 @@ dials_frame(struct dials *D, uint64_t now_us)
 {
 	if (!D->stepping || now_us < D->last_us || now_us - D->last_us < DIALS_STILL_US)
 		return;
-	int v = modes_current_view(D->M);
-	if (D->camera_moved && v >= 0) {
-		struct camera cam;
-		view_camera_of_view(&D->M->d->env.view[v], &cam);
-		modes_set_camera(D->M, v, &cam, 1);
-	}
-	D->camera_moved = 0;
-	D->stepping = 0;
-	modes_step(D->M, 'E');
+	end_turn(D);
 }

@@ -6,7 +6,7 @@
  * kiosk's view, the elevation or the torso's bend of a behaving human, an
  * axis of the manipulation transform; a panel button's command run as if
  * typed at the kiosk. A turn of the dials is one step (one undo), ended
- * when they have been still for DIALS_STILL_US.
+ * when they have been still for DIALS_STILL_US, or by a key or a button.
  */
 #ifndef POSTURE_DIALS_H
 #define POSTURE_DIALS_H

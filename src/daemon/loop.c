@@ -83,6 +83,7 @@ run_own_command(struct loop *L, const char *line)
 {
 	struct cmd_outcome out;
 	cmd_run(&L->d, -1, line, strlen(line), &out);
+	modes_sync(&L->modes);
 	if (out.mutated && journal_command(&L->j, &L->d, line, strlen(line)) < 0)
 		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
 	free(out.json);
@@ -141,6 +142,7 @@ typed_at_kiosk(void *ctx, const char *line)
 	struct cmd_outcome out;
 	size_t len = strlen(line);
 	cmd_run(&L->d, DAEMON_CLIENT_KIOSK, line, len, &out);
+	modes_sync(&L->modes);
 	if (out.mutated && journal_command(&L->j, &L->d, line, len) < 0)
 		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
 	json_t *reply = out.json ? json_loads(out.json, 0, NULL) : NULL;
@@ -323,6 +325,7 @@ request(struct loop *L, int i, const char *line, size_t len)
 		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
 	struct cmd_outcome out;
 	cmd_run(&L->d, i, line, len, &out);
+	modes_sync(&L->modes);
 	/* a change is replayed from its command; frames a command ran (settle)
 	 * are recorded as the postures they reached */
 	int rc = out.mutated ? journal_command(&L->j, &L->d, line, len)

@@ -799,3 +799,20 @@ modes_step(struct modes *M, char end)
 {
 	mode_step(M, end, modes_now(M));
 }
+
+void
+modes_sync(struct modes *M)
+{
+	struct interact *ia = &M->interact;
+	if (ia->mode == INTERACT_NONE)
+		return;
+	const struct env_figure *f = ia->fig >= 0 ? &M->d->env.fig[ia->fig] : NULL;
+	if (!f || !f->gen || f->gen != ia->tag) {
+		interact_end(ia);
+		if (M->kiosk)
+			kiosk_mode_ended(M->kiosk);
+		return;
+	}
+	ia->model = f->model;
+	ia->state = f->state;
+}

@@ -79,6 +79,14 @@ void modes_set_camera(struct modes *M, int v, const struct camera *cam, int jour
 /* the view the kiosk works in: the mode's, else the pointer's, else the first; -1: none */
 int modes_current_view(const struct modes *M);
 
+/*
+ * After a command: the environment may have been replaced (undo, a
+ * session loaded), its models and states made anew. A mode whose figure
+ * is still there (same slot, same generation) takes the new ones; else it
+ * ends.
+ */
+void modes_sync(struct modes *M);
+
 /* a step begins ('B') or ends ('E'), journaled (daemon.h's mode_step) */
 void modes_step(struct modes *M, char end);
 

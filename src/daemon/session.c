@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "pose/attach.h"
+#include "pose/behave.h"
 #include "figure/figure.h"
 #include "figure/kin.h"
 #include "daemon/words.h"
@@ -439,7 +440,7 @@ read_behave(struct reader *r, struct env *e)
 	f->behave = b;
 	f->ik_stale = 1;
 	/* what the behaviours measure, measured again on the posture read above */
-	balance_measure(f->model, f->state, BALANCE_CONTACT, &b->bal);
+	behave_measure(b, f->model, f->state);
 	return 0;
 }
 

@@ -62,7 +62,17 @@ measure(struct behave *b, const struct model *m, const struct state *s)
 	for (int k = 0; k < 2; k++)
 		if (b->p.heel[k] == HEEL_ALLOW_RISE && !b->p.seated && !b->step.active)
 			tiptoe |= 1u << k;
-	return balance_measure_feet(m, s, BALANCE_CONTACT, tiptoe, &b->bal);
+	int rc = balance_measure_feet(m, s, BALANCE_CONTACT, tiptoe, &b->bal);
+	/* the truth follows every measure (a restored figure too); the alert's edge is the solve's */
+	b->stability_low = b->bal.margin < b->p.stability_threshold; /* no support: a margin of -1e9 */
+	return rc;
+}
+
+void
+behave_measure(struct behave *b, const struct model *m, const struct state *s)
+{
+	measure(b, m, s);
+	b->alert_low = b->stability_low;
 }
 
 /* ---- the constraints ----------------------------------------------------------- */
@@ -519,10 +529,9 @@ behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik
 		kin_update(m, s);
 	}
 	measure(b, m, s);
-	/* stability as data: the alert's edge, for the loop to tell */
-	int low = b->bal.margin < b->p.stability_threshold;
-	b->stability_changed = low != b->stability_low;
-	b->stability_low = low;
+	/* stability as data: the alert's edge since the last solve told one, for the loop to tell */
+	b->stability_changed = b->stability_low != b->alert_low;
+	b->alert_low = b->stability_low;
 	return r;
 }
 

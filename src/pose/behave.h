@@ -110,8 +110,9 @@ struct behave {
 	struct balance bal;       /* measured this frame */
 	struct behave_step step;
 	int steps_taken;
-	int stability_low;     /* the margin is below the threshold */
-	int stability_changed; /* ... and was not at the frame before */
+	int stability_low;     /* the margin is below the threshold, as last measured */
+	int stability_changed; /* ... and was not when the last alert was told (at the solve) */
+	int alert_low;         /* stability_low as the last solve told it */
 	int detached; /* def[] holds the constraints; they are not (yet) in the solver */
 };
 
@@ -156,6 +157,13 @@ int behave_unpack(struct behave *b, const struct model *m, const double *v, int 
 /* applies changed parameters (foot, heel, torso, head, eyes, hands) to the constraints */
 void behave_set_params(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
 		       const struct behave_params *p);
+
+/*
+ * The balance measured again on the posture as it is (a figure restored
+ * from a session): the margin, and whether it is low, as a solve leaves
+ * them; the alert's edge is not moved (a restored state tells no alert).
+ */
+void behave_measure(struct behave *b, const struct model *m, const struct state *s);
 
 /* ---- manipulation primitives (Table 5.2): goals the frames walk to ---- */
 

@@ -156,3 +156,39 @@ def test_a_button_held_too_long_ends_its_drag(daemon):
         assert root(c) == moved
         c.request("undo")
         assert root(c) == start
+
+
+def test_a_mode_goes_on_with_the_figure_an_undo_restored(daemon):
+    """undo replaces the environment (new models and states): a joint mode on a figure
+    still there works on the restored one, as if it had been manipulated from the start"""
+    def crank(c, fig):
+        c.request(f"manipulate joint {fig} elbow_r view=side")
+        c.request("input pointer side 150 150")
+        c.request("input button left down")
+        for x, y in ((140, 170), (120, 185), (100, 190)):
+            c.request(f"input pointer side {x} {y}")
+        c.request("input button left up")
+        value = c.request(f"get joint {fig} elbow_r")["values"][0]
+        c.request("input key KEY_ESC down")
+        c.request("input key KEY_ESC up")
+        return value
+
+    with daemon.client() as c:
+        c.request("add view side width=320 height=240 eye=3,1.2,0 target=0,1.2,0")
+        c.request("load human as a")
+        c.request("set joint a elbow_r 30deg")
+        c.request("manipulate joint a elbow_r view=side")
+        c.request("undo")  # elbow back to 0, the figure made anew
+        assert c.request("get manip")["mode"] == "joint"
+        c.request("input pointer side 150 150")
+        c.request("input button left down")
+        for x, y in ((140, 170), (120, 185), (100, 190)):
+            c.request(f"input pointer side {x} {y}")
+        c.request("input button left up")
+        after_undo = c.request("get joint a elbow_r")["values"][0]
+        c.request("input key KEY_ESC down")
+        c.request("input key KEY_ESC up")
+        c.request("unload figure a")
+        c.request("load human as b")
+        assert after_undo == pytest.approx(crank(c, "b"), abs=1e-12)
+        assert after_undo != 0
