@@ -684,10 +684,10 @@ button_press(struct menu *m, int x, int y)
 		return row_is_item(m, r) ? highlight(m, r) : act(MENU_NONE);
 	case HIT_MORE_UP:
 		m->armed = 1;
-		return highlight_page(m, -1);
+		return m->top > 0 ? highlight_page(m, -1) : act(MENU_NONE);
 	case HIT_MORE_DOWN:
 		m->armed = 1;
-		return highlight_page(m, 1);
+		return m->top + m->geom.window < m->nrows ? highlight_page(m, 1) : act(MENU_NONE);
 	}
 	return act(MENU_NONE);
 }

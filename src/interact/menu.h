@@ -73,7 +73,8 @@ struct menu_def {
 	int row_px;  /* a row's height (VIEW_LINE_PX) */
 	int char_px; /* a character's advance, monospaced (VIEW_CHAR_PX) */
 	int pad_px;  /* the panel's margin around its rows */
-	int max_rows; /* the panel's rows at most, filter and hint included; 0: as the screen holds */
+	int max_rows; /* the panel's rows at most, filter and hint included (a scrolled
+		       * panel has at least 5); 0: as many as the screen holds */
 };
 
 /*
