@@ -468,6 +468,13 @@ rect(struct drawlist *dl, double x0, double y0, double x1, double y1, const uint
 }
 
 void
+view_add_rect(struct drawlist *dl, double x0, double y0, double x1, double y1, const uint8_t rgba[4])
+{
+	view_batch_begin(dl, VIEW_TRIANGLES, VIEW_SCREEN, 1, 0);
+	rect(dl, x0, y0, x1, y1, rgba);
+}
+
+void
 view_add_status(struct drawlist *dl, const char *status, const char *message, int caret)
 {
 	static const uint8_t c_status[4] = { 255, 255, 255, 255 }, c_msg[4] = { 255, 236, 170, 255 };

@@ -334,6 +334,10 @@ int view_add_balance(struct drawlist *dl, const struct model *m, const struct st
  */
 void view_add_status(struct drawlist *dl, const char *status, const char *message, int caret);
 
+/* a filled screen rectangle from pixel (x0, y0) to (x1, y1), over the scene */
+void view_add_rect(struct drawlist *dl, double x0, double y0, double x1, double y1,
+		   const uint8_t rgba[4]);
+
 /* the mouse pointer: an arrow with its tip at pixel (x, y) */
 void view_add_pointer(struct drawlist *dl, double x, double y);
 
