@@ -333,6 +333,19 @@ cmd_get_kiosk(struct cmd_ctx *c)
 		json_object_set_new(hover, "segment", json_string(f->model->seg_name[c->d->hover_seg]));
 	}
 	json_object_set_new(c->result, "picked", hover);
+	const struct menu *m = c->d->menu;
+	json_t *menu = json_null();
+	if (m && menu_is_open(m)) {
+		menu = json_object();
+		json_object_set_new(menu, "filter", json_string(m->filter));
+		int hi = menu_highlighted(m);
+		json_t *label = json_null();
+		for (int i = 0; hi >= 0 && i < m->nitems; i++)
+			if (m->item[i].cmd == hi)
+				label = json_string(m->item[i].label);
+		json_object_set_new(menu, "highlighted", label);
+	}
+	json_object_set_new(c->result, "menu", menu);
 	return 0;
 }
 

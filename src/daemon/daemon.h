@@ -15,6 +15,7 @@
 #include "interact/dial_bind.h"
 #include "interact/interact.h"
 #include "interact/kiosk.h"
+#include "interact/menu.h"
 #include "interact/prompt.h"
 #include "interact/pick.h"
 #include "pose/env.h"
@@ -128,6 +129,9 @@ struct daemon {
 	/* a command asking for its missing arguments, and what the pointer would pick; NULL: none */
 	const struct prompt *prompt;
 	int hover_fig, hover_seg;
+	/* the pop-up menu of commands and the view it is open in; NULL: none */
+	const struct menu *menu;
+	int menu_view;
 	/* the kiosk's pointer outside a mode: its view (-1: none yet) and pixel */
 	int pointer_view;
 	double pointer_x, pointer_y;

@@ -25,6 +25,13 @@ modes_init(struct modes *M, struct daemon *d, struct scene *scene,
 	M->ctx = ctx;
 	interact_init(&M->interact);
 	M->hover_fig = M->hover_seg = -1;
+	struct menu_def md = menu_default_def();
+	md.verb = cmd_entry_verb;
+	md.object = cmd_entry_object;
+	md.usage = cmd_entry_usage;
+	menu_init(&M->menu, &md);
+	d->menu = &M->menu;
+	d->menu_view = M->menu_view = -1;
 	d->prompt = &M->prompt;
 	d->hover_fig = d->hover_seg = -1;
 	d->pointer_view = -1;
@@ -687,6 +694,70 @@ drive_prompt(struct modes *M, const struct input_event_rec *e)
 	return e->kind == INPUT_BUTTON && e->code == BTN_LEFT; /* its release too */
 }
 
+/* the menu chose a command: its words go to the edit line's path (the prompts ask the rest) */
+static void
+menu_chosen(struct modes *M, int cmd)
+{
+	char line[96];
+	const char *obj = cmd_entry_object(cmd);
+	snprintf(line, sizeof line, "%s%s%s", cmd_entry_verb(cmd), obj && obj[0] ? " " : "",
+		 obj ? obj : "");
+	line_entered(M, line);
+}
+
+/*
+ * The pop-up menu (issue 14): a mouse button pressed on the background
+ * (nothing under the pointer) with no mode, prompt or change view opens it
+ * at the pointer; while open, the pointer, the buttons, the wheel and the
+ * keys are its own. Returns 1 when the event was the menu's.
+ */
+static int
+drive_menu(struct modes *M, const struct input_event_rec *e)
+{
+	struct menu *m = &M->menu;
+	int open = menu_is_open(m);
+	if (!open) {
+		if (e->kind != INPUT_BUTTON || e->value != 1 || !is_mouse_button(e) ||
+		    M->interact.mode != INTERACT_NONE || prompt_asking(&M->prompt) || viewing(M) ||
+		    M->pointer_view < 0 || !M->d->env.view[M->pointer_view].used)
+			return 0;
+		struct pick_hit h;
+		int fig;
+		if (under_pointer(M, &h, &fig))
+			return 0; /* on a figure: not the background */
+		const struct env_view *vw = &M->d->env.view[M->pointer_view];
+		/* above the message and status lines, which stay readable under it */
+		if (menu_open(m, (int)M->pointer_x, (int)M->pointer_y, vw->width,
+			      vw->height - 2 * VIEW_LINE_PX).kind == MENU_NONE)
+			return 0;
+		M->menu_view = M->d->menu_view = M->pointer_view;
+		M->scene->dirty = 1;
+		return 1;
+	}
+	struct menu_action a = { MENU_NONE, -1 };
+	struct kbd_text_key key;
+	int x = (int)M->pointer_x, y = (int)M->pointer_y;
+	if (e->kind == INPUT_KEY) {
+		if (M->kiosk && kiosk_translate(M->kiosk, e, &key))
+			a = menu_key(m, e->code, &key);
+	} else if (e->kind == INPUT_MOTION || e->kind == INPUT_POINTER) {
+		a = menu_pointer(m, x, y);
+	} else if (e->kind == INPUT_BUTTON && is_mouse_button(e)) {
+		a = menu_button(m, e->value != 0, x, y);
+	} else if (e->kind == INPUT_WHEEL) {
+		a = menu_wheel(m, e->value);
+	} else {
+		return 0;
+	}
+	if (a.kind != MENU_NONE)
+		M->scene->dirty = 1;
+	if (a.kind == MENU_CHOSEN || a.kind == MENU_CLOSED)
+		M->menu_view = M->d->menu_view = -1;
+	if (a.kind == MENU_CHOSEN)
+		menu_chosen(M, a.cmd);
+	return 1;
+}
+
 /*
  * The keyboard's events go to the kiosk first (the edit line, a value
  * typed in a mode, undo and redo); 1 when it took the event.
@@ -730,7 +801,8 @@ modes_input(struct modes *M, const struct input_event_rec *e, long px, long py)
 {
 	track_pointer(M, e, px, py);
 	enum interact_mode was = M->interact.mode;
-	if (!drive_prompt(M, e) && !drive_kiosk(M, e) && !drive_view(M, e, px, py))
+	if (!drive_menu(M, e) && !drive_prompt(M, e) && !drive_kiosk(M, e) &&
+	    !drive_view(M, e, px, py))
 		drive_mode(M, e, px, py);
 	if (was != INTERACT_NONE && M->interact.mode == INTERACT_NONE && M->kiosk)
 		kiosk_mode_ended(M->kiosk);

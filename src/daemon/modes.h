@@ -18,6 +18,7 @@
 #include "devices/event.h"
 #include "interact/interact.h"
 #include "interact/kiosk.h"
+#include "interact/menu.h"
 #include "interact/prompt.h"
 #include "interact/view_adjust.h"
 #include "interact/viewctl.h"
@@ -46,6 +47,8 @@ struct modes {
 	unsigned char own_parts[MODES_MAX_SEGMENTS]; /* §3.7.1: the parts around G, left out */
 	struct kiosk *kiosk;    /* the keyboard's edit line; NULL: keys go to the modes alone */
 	struct prompt prompt;   /* a command asking for its missing arguments */
+	struct menu menu;       /* the pop-up menu of commands, open in menu_view */
+	int menu_view;
 	int hover_fig, hover_seg; /* what a prompt would pick under the pointer (-1: nothing) */
 	/* runs a line typed at the kiosk (journaled, its outcome on the message line) */
 	void (*run_typed)(void *ctx, const char *line);

@@ -1,11 +1,14 @@
 /* scene.c - the views' pictures: drawn, written to files and the framebuffer, sent as events */
 #include "daemon/scene.h"
 
+#include "interact/menu_draw.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "draw/sink.h"
+#include "interact/menu_draw.h"
 
 void
 scene_init(struct scene *sc, const char *frames_dir)
@@ -226,6 +229,11 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	if (manipulating)
 		scene_add_manip(sc->dl, ia);
 	add_hover(sc, d);
+	/* the pop-up menu over everything, in the view it opened in */
+	if (d->menu && d->menu_view == v && menu_is_open(d->menu)) {
+		menu_layout(d->menu, &sc->menu_layout);
+		menu_draw(sc->dl, &sc->menu_layout);
+	}
 	/* outside a mode the kiosk's pointer is drawn where it is (a mode draws its own) */
 	if (!(ia && ia->mode != INTERACT_NONE) && d->pointer_view == v)
 		view_add_pointer(sc->dl, d->pointer_x, d->pointer_y);

@@ -9,6 +9,7 @@
 
 #include <stdint.h>
 
+#include "interact/menu.h"
 #include "daemon/daemon.h"
 #include "daemon/events.h"
 #include "draw/frame.h"
@@ -33,6 +34,7 @@ struct scene {
 	struct frame frame;          /* the last view drawn */
 	uint64_t last_png_us, last_event_us;
 	int dirty; /* something changed since the pictures were last published */
+	struct menu_layout menu_layout; /* the pop-up menu's rows as last laid out */
 };
 
 void scene_init(struct scene *sc, const char *frames_dir);

@@ -127,6 +127,12 @@ drop_value(struct kiosk *k)
 	k->typing_value = 0;
 }
 
+int
+kiosk_translate(struct kiosk *k, const struct input_event_rec *e, struct kbd_text_key *dest)
+{
+	return e->kind == INPUT_KEY && kbd_text_key(k->kt, e->code, e->value, dest) == 1;
+}
+
 void
 kiosk_clear(struct kiosk *k)
 {

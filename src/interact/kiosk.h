@@ -83,6 +83,13 @@ enum kiosk_keys {
 struct kiosk_action kiosk_input(struct kiosk *k, const struct input_event_rec *e,
 				enum kiosk_keys keys);
 
+/*
+ * A key event translated for someone else (the menu) but through the
+ * kiosk's keyboard, so its modifiers stay true: 1 with dest for a press or
+ * repeat, 0 otherwise.
+ */
+int kiosk_translate(struct kiosk *k, const struct input_event_rec *e, struct kbd_text_key *dest);
+
 /* what is typed goes (a command cancelled under it) */
 void kiosk_clear(struct kiosk *k);
 
