@@ -1,0 +1,89 @@
+"""The kiosk end to end through recorded input (issue 14): under umockdev a keyboard and a
+mouse replay evemu recordings made here (the kernel's codes from its own header) on the
+daemon's real evdev path: the keyboard types commands at the edit line, the mouse drags
+the figure in the mode they started, the keyboard's ESC ends it. The journal holds the
+typed commands and the drag's step; the picture goes to the test output."""
+import pathlib
+import shutil
+import time
+
+import pytest
+
+from daemon import Daemon, ROOT, write_picture
+from kiosk_keys import key_lines
+from test_input import kernel_codes
+
+EVDEV = ROOT / "tests" / "input" / "evdev"
+MOCK = ROOT / "tests" / "input" / "umockdev"
+UMOCKDEV_RUN = shutil.which("umockdev-run")
+MOUSE, KEYBOARD = "/dev/input/event9", "/dev/input/event10"
+
+pytestmark = pytest.mark.skipif(
+    UMOCKDEV_RUN is None, reason="umockdev-run is not installed (Debian package umockdev)")
+
+
+def evemu(template, events):
+    """template's description lines and events (t seconds, type, code, value), a frame each"""
+    head = [ln for ln in template.read_text().splitlines() if not ln.startswith("E:")]
+    out = head + ["E: 0.000000 0000 0000 0000"]
+    for t, typ, code, value in events:
+        us = int(round(t * 1e6))
+        stamp = f"{us // 1000000}.{us % 1000000:06d}"
+        out.append(f"E: {stamp} {typ:04x} {code:04x} {value:04d}")
+        out.append(f"E: {stamp} 0000 0000 0000")
+    return "\n".join(out) + "\n"
+
+
+def typing(text, start, codes):
+    """the key events a US keyboard sends for text, 30 ms apart"""
+    events, t = [], start
+    for line in key_lines(text):
+        _, _, name, how = line.split()
+        events.append((t, 1, codes[name], 1 if how == "down" else 0))
+        t += 0.03
+    return events, t
+
+
+def test_a_recorded_keyboard_and_mouse_drive_the_kiosk(tmp_path):
+    codes = kernel_codes()
+    keys, t = typing("load human as rec", 3.0, codes)
+    keys += [(t, 1, codes["KEY_ENTER"], 1), (t + 0.03, 1, codes["KEY_ENTER"], 0)]
+    more, t = typing("manipulate figure rec", t + 0.5, codes)
+    keys += more + [(t, 1, codes["KEY_ENTER"], 1), (t + 0.03, 1, codes["KEY_ENTER"], 0)]
+    drag_at = t + 0.5
+    keys += [(drag_at + 1.0, 1, codes["KEY_ESC"], 1), (drag_at + 1.03, 1, codes["KEY_ESC"], 0)]
+    mouse = [(drag_at, 1, codes["BTN_LEFT"], 1)]
+    mouse += [(drag_at + 0.02 * (i + 1), 2, 0, 4) for i in range(20)]  # REL_X, 80 counts
+    mouse += [(drag_at + 0.5, 1, codes["BTN_LEFT"], 0)]
+    (tmp_path / "keys.evemu").write_text(evemu(EVDEV / "keyboard.evemu", keys))
+    (tmp_path / "mouse.evemu").write_text(evemu(EVDEV / "mouse.evemu", mouse))
+    d = Daemon(extra=("--input", f"evdev:{MOUSE}", "--input", f"evdev:{KEYBOARD}"))
+    d.argv = [UMOCKDEV_RUN, "-d", str(MOCK / "mouse.umockdev"), "-d", str(MOCK / "keyboard.umockdev"),
+              "-i", f"{MOUSE}={MOCK}/mouse.ioctl", "-i", f"{KEYBOARD}={MOCK}/keyboard.ioctl",
+              "-e", f"{MOUSE}={tmp_path}/mouse.evemu", "-e", f"{KEYBOARD}={tmp_path}/keys.evemu",
+              "--"] + d.argv
+    d.start()
+    try:
+        with d.client() as c:
+            c.request("add view front width=480 height=320 eye=0,1,3 target=0,1,0")
+            assert [x["class"] for x in c.request("list devices")["devices"]] == ["mouse", "keyboard"]
+            deadline = time.monotonic() + 20
+            while time.monotonic() < deadline and c.request("get kiosk")["mode"] != "figure":
+                time.sleep(0.05)
+            assert [f["name"] for f in c.request("list figures")["figures"]] == ["rec"]
+            start = c.request("get manip")["position"]
+            while time.monotonic() < deadline and c.request("get kiosk")["mode"] != "none":
+                time.sleep(0.05)
+            moved = c.request("get site rec pelvis.root")["position"]
+            write_picture(c, "front", "kiosk_recorded.png")
+        assert moved[0] - start[0] > 0.05, (start, moved)  # dragged along x, to the right
+        assert moved[1:] == pytest.approx(start[1:], abs=1e-9)
+        records = [r.split(" ", 2)[1:] for r in
+                   (pathlib.Path(d.state_dir) / "journal").read_text().splitlines()]
+        marks = [(k, b) for k, b in records if k in "CBE"]
+        assert marks[:2] == [("C", "add view front width=480 height=320 eye=0,1,3 target=0,1,0"),
+                             ("C", "load human as rec")]
+        assert [k for k, _ in marks[2:]] == ["B", "E"]
+    finally:
+        d.stop()
+        d.cleanup()
