@@ -114,9 +114,16 @@ events_kiosk(struct events *E)
 	int on = ia && ia->mode != INTERACT_NONE;
 	const char *fig = on && ia->fig >= 0 ? d->env.fig[ia->fig].name : "";
 	const char *view = on && ia->view >= 0 ? d->env.view[ia->view].name : "";
+	const struct prompt_arg *asking = d->prompt ? prompt_asking(d->prompt) : NULL;
+	const struct env_figure *hf = d->hover_fig >= 0 && d->hover_fig < ENV_MAX_FIGURES &&
+						      d->env.fig[d->hover_fig].gen
+					      ? &d->env.fig[d->hover_fig]
+					      : NULL;
+	const char *hseg = hf && d->hover_seg >= 0 ? hf->model->seg_name[d->hover_seg] : "";
 	char now[sizeof E->told_kiosk];
-	snprintf(now, sizeof now, "%s|%s|%s|%d", on ? interact_name(ia) : "none", fig, view,
-		 d->step.open);
+	snprintf(now, sizeof now, "%s|%s|%s|%d|%.80s|%.30s|%s|%s", on ? interact_name(ia) : "none",
+		 fig, view, d->step.open, asking ? prompt_line(d->prompt) : "",
+		 asking ? asking->question : "", hf ? hf->name : "", hseg);
 	if (!strcmp(now, E->told_kiosk))
 		return;
 	memcpy(E->told_kiosk, now, sizeof now);
@@ -137,6 +144,28 @@ events_kiosk(struct events *E)
 		jbuf_raw(j, "null");
 	jbuf_key(j, "step", 0);
 	jbuf_bool(j, d->step.open);
+	jbuf_key(j, "prompt", 0);
+	if (asking) {
+		jbuf_raw(j, "{");
+		jbuf_key(j, "line", 1);
+		jbuf_str(j, prompt_line(d->prompt));
+		jbuf_key(j, "question", 0);
+		jbuf_str(j, asking->question);
+		jbuf_raw(j, "}");
+	} else {
+		jbuf_raw(j, "null");
+	}
+	jbuf_key(j, "picked", 0);
+	if (hf) {
+		jbuf_raw(j, "{");
+		jbuf_key(j, "figure", 1);
+		jbuf_str(j, hf->name);
+		jbuf_key(j, "segment", 0);
+		jbuf_str(j, hseg);
+		jbuf_raw(j, "}");
+	} else {
+		jbuf_raw(j, "null");
+	}
 	jbuf_raw(j, "}");
 	events_send(E, SUB_KIOSK);
 }

@@ -89,3 +89,20 @@ def test_esc_cancels_and_nothing_changes(daemon):
         assert asking(c) == "select a figure"
         press(c, "KEY_ESC")
         assert c.request("get manip")["mode"] == "none"
+
+
+def test_subscribers_are_told_the_prompt_and_what_is_picked(daemon):
+    with daemon.client() as c, daemon.client() as watcher:
+        setup(c)
+        watcher.subscribe("kiosk")
+        type_text(c, "manipulate site", enter=True)
+        x, y = pixel_on(c, "thigh_l")
+        c.request(f"input pointer front {x} {y}")
+        press(c, "KEY_ESC")
+        c.request("get kiosk")
+        seen = [(e["prompt"], e["picked"]) for e in watcher.events(timeout=0.5)
+                if e["event"] == "kiosk"]
+        asked = {"line": "manipulate site", "question": "select a figure"}
+        assert (asked, None) in seen
+        assert (asked, {"figure": "bob", "segment": "thigh_l"}) in seen
+        assert seen[-1] == (None, None)
