@@ -346,6 +346,12 @@ cmd_get_kiosk(struct cmd_ctx *c)
 		json_object_set_new(menu, "highlighted", label);
 	}
 	json_object_set_new(c->result, "menu", menu);
+	const struct daemon *d = c->d;
+	json_object_set_new(c->result, "pointer",
+			    d->pointer_view >= 0 && d->env.view[d->pointer_view].used
+				    ? json_pack("{sssfsf}", "view", d->env.view[d->pointer_view].name,
+						"x", d->pointer_x, "y", d->pointer_y)
+				    : json_null());
 	return 0;
 }
 

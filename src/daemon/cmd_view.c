@@ -6,6 +6,7 @@
 #include "daemon/cmd_ctx.h"
 #include "daemon/daemon.h"
 #include "draw/sink.h"
+#include "draw/tiles.h"
 #include "daemon/statefile.h"
 
 static int
@@ -140,7 +141,81 @@ cmd_delete_view(struct cmd_ctx *c)
 	if (v < 0)
 		return -1;
 	memset(&c->d->env.view[v], 0, sizeof c->d->env.view[v]);
+	/* a view gone from the screen: the others close up */
+	struct env *e = &c->d->env;
+	int k = 0;
+	for (int i = 0; i < e->nlayout; i++)
+		if (e->layout[i] != v)
+			e->layout[k++] = e->layout[i];
+	e->nlayout = k;
 	return 0;
+}
+
+/* the layout's reply: the screen, and each view's tile on it */
+static int
+layout_reply(struct cmd_ctx *c)
+{
+	const struct env *e = &c->d->env;
+	json_object_set_new(c->result, "screen",
+			    json_pack("[ii]", c->d->screen_w, c->d->screen_h));
+	json_t *tiles = json_array();
+	struct tiles T;
+	if (e->nlayout && tiles_make(&T, c->d->screen_w, c->d->screen_h, 2 * VIEW_LINE_PX,
+				     e->nlayout) == 0)
+		for (int i = 0; i < e->nlayout; i++)
+			json_array_append_new(tiles, json_pack("{sssisisisi}", "view",
+							       e->view[e->layout[i]].name, "x", T.t[i].x,
+							       "y", T.t[i].y, "width", T.t[i].w,
+							       "height", T.t[i].h));
+	json_object_set_new(c->result, "tiles", tiles);
+	return 0;
+}
+
+/*
+ * layout VIEW... | layout off: the views tiled on the kiosk's screen (the
+ * framebuffer's, or --screen), each resized to its tile; off: the first
+ * view alone, at the size it has.
+ */
+int
+cmd_layout(struct cmd_ctx *c)
+{
+	struct env *e = &c->d->env;
+	if (c->argc == 1 && !strcmp(c->argv[0], "off")) {
+		e->nlayout = 0;
+		return layout_reply(c);
+	}
+	if (c->argc > ENV_MAX_VIEWS)
+		return cmd_fail(c, "bad-argument", "at most %d views", ENV_MAX_VIEWS);
+	int slots[ENV_MAX_VIEWS];
+	for (int i = 0; i < c->argc; i++) {
+		if ((slots[i] = view_of(c, c->argv[i])) < 0)
+			return -1;
+		for (int k = 0; k < i; k++)
+			if (slots[k] == slots[i])
+				return cmd_fail(c, "bad-argument", "view %s named twice", c->argv[i]);
+	}
+	struct tiles T;
+	if (tiles_make(&T, c->d->screen_w, c->d->screen_h, 2 * VIEW_LINE_PX, c->argc) < 0)
+		return cmd_fail(c, "bad-argument", "%d views do not fit a %dx%d screen", c->argc,
+				c->d->screen_w, c->d->screen_h);
+	for (int i = 0; i < c->argc; i++) {
+		e->layout[i] = slots[i];
+		e->view[slots[i]].width = T.t[i].w;
+		e->view[slots[i]].height = T.t[i].h;
+	}
+	e->nlayout = c->argc;
+	return layout_reply(c);
+}
+
+int
+cmd_get_layout(struct cmd_ctx *c)
+{
+	const struct env *e = &c->d->env;
+	json_t *views = json_array();
+	for (int i = 0; i < e->nlayout; i++)
+		json_array_append_new(views, json_string(e->view[e->layout[i]].name));
+	json_object_set_new(c->result, "views", views);
+	return layout_reply(c);
 }
 
 int

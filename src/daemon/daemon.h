@@ -142,6 +142,7 @@ struct daemon {
 	/* a step of the mode begins ('B') or ends ('E'), journaled; NULL: none */
 	void (*mode_step)(struct daemon *d, char end);
 	double pointer_gain;
+	int screen_w, screen_h; /* the kiosk's screen: the framebuffer's, or --screen */
 	uint64_t held_max_us; /* a mouse button held this long ends its drag (set input held=) */
 	struct pick_cache picks;
 };

@@ -571,6 +571,8 @@ loop_run(const struct loop_config *cfg)
 	modes_init(&L->modes, &L->d, &L->scene, command_from_modes, L);
 	start_kiosk(L, cfg);
 	L->d.picked.fig = -1;
+	L->d.screen_w = cfg->screen_w ? cfg->screen_w : 1280;
+	L->d.screen_h = cfg->screen_h ? cfg->screen_h : 720;
 	dials_init(&L->dials, &L->modes);
 	L->d.bindings = &L->dials.table;
 	L->d.interact = &L->modes.interact;

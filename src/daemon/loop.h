@@ -29,6 +29,7 @@ struct loop_config {
 	const char *keymap;        /* the kiosk keyboard's layout, LAYOUT[:VARIANT]; NULL: us */
 	unsigned view_key;         /* the change-view key at the edit line; 0: KEY_F2 */
 	const char *bindings;      /* the dial panel's bindings file (interact/dial_bind.h), NULL: none */
+	int screen_w, screen_h;    /* the kiosk's screen; 0: the framebuffer's, else 1280x720 */
 };
 
 /* runs until SIGTERM or SIGINT; returns the process exit status */

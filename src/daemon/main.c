@@ -44,6 +44,8 @@ static const char usage[] =
 	"  --keymap LAYOUT    the kiosk keyboard's layout, LAYOUT[:VARIANT] as xkb-data names\n"
 	"                     them (default us; e.g. de, fr, de:nodeadkeys)\n"
 	"  --view-key KEY     the key that enters change view from the edit line (default F2)\n"
+	"  --screen WxH       the kiosk's screen, where `layout` tiles the views (default: the\n"
+	"                     framebuffer's size, else 1280x720)\n"
 	"  --bindings FILE    the dial panel's bindings: dials to joints, the view, behaviours\n"
 	"                     or G, buttons to commands (see tools/panel.bindings)\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
@@ -57,6 +59,7 @@ struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
 	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16], keymap[128], bindings[PATH_MAX];
 	unsigned view_key;
+	int screen_w, screen_h;
 	char input[INPUT_DEVS_MAX][INPUT_DEVS_SPEC_MAX];
 	const char *inputs[INPUT_DEVS_MAX];
 	int ninputs;
@@ -120,6 +123,15 @@ set(struct settings *s, const char *key, const char *val)
 			return -1;
 		}
 		s->view_key = (unsigned)code;
+	} else if (!strcmp(key, "screen")) {
+		int w, h, used = 0;
+		if (sscanf(val, "%dx%d%n", &w, &h, &used) != 2 || val[used] || w < 64 || h < 64 ||
+		    w > 16384 || h > 16384) {
+			fprintf(stderr, "postured: screen is WxH in pixels, such as 1920x1080\n");
+			return -1;
+		}
+		s->screen_w = w;
+		s->screen_h = h;
 	} else if (!strcmp(key, "bindings")) {
 		snprintf(s->bindings, sizeof s->bindings, "%s", val);
 	} else if (!strcmp(key, "panel"))
@@ -266,6 +278,7 @@ main(int argc, char **argv)
 				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL,
 				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs,
 				   s.grab, s.pointer_gain, s.hotplug[0] ? s.hotplug : NULL,
-				   s.keymap, s.view_key, s.bindings[0] ? s.bindings : NULL };
+				   s.keymap, s.view_key, s.bindings[0] ? s.bindings : NULL,
+				   s.screen_w, s.screen_h };
 	return loop_run(&cfg);
 }

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "daemon/cmd.h"
+#include "draw/tiles.h"
 #include "figure/kin.h"
 #include "interact/mouse_line.h"
 #include "interact/obstruct.h"
@@ -796,9 +797,53 @@ drive_kiosk(struct modes *M, const struct input_event_rec *e)
 	return 1;
 }
 
-void
-modes_input(struct modes *M, const struct input_event_rec *e, long px, long py)
+/*
+ * With views tiled on the screen (layout), the pointer is the screen's:
+ * motion moves it across the tiles and an absolute position (0..1) is a
+ * point of the whole screen. Either becomes a position in pixels of the
+ * view under it, which is what the modes and change view take.
+ */
+static void
+screen_pointer(struct modes *M, struct input_event_rec *e, long px, long py)
 {
+	const struct env *env = &M->d->env;
+	struct tiles T;
+	if (!env->nlayout || (e->kind != INPUT_MOTION && e->kind != INPUT_POINTER) ||
+	    tiles_make(&T, M->d->screen_w, M->d->screen_h, 2 * VIEW_LINE_PX, env->nlayout) < 0)
+		return;
+	if (e->kind == INPUT_POINTER && (e->flags & INPUT_F_VIEW)) {
+		for (int i = 0; i < env->nlayout; i++) /* a view's pixel: where it is on the screen */
+			if (env->layout[i] == e->code)
+				tiles_to_screen(&T, i, e->x, e->y, &M->screen_x, &M->screen_y);
+		return;
+	}
+	if (e->kind == INPUT_POINTER) {
+		M->screen_x = e->x * T.screen_w;
+		M->screen_y = e->y * T.screen_h;
+	} else if (M->interact.mode == INTERACT_NONE && !viewing(M)) {
+		/* (in a mode, or changing the view, motion is the mode's, in its view) */
+		M->screen_x = fmin(fmax(M->screen_x + (double)px, 0), T.screen_w - 1);
+		M->screen_y = fmin(fmax(M->screen_y + (double)py, 0), T.screen_h - 1);
+	} else {
+		return;
+	}
+	double vx, vy;
+	int i = tiles_at(&T, M->screen_x, M->screen_y, &vx, &vy);
+	if (i < 0)
+		return; /* a gap or the band: the pointer stays where it was for the views */
+	e->kind = INPUT_POINTER;
+	e->flags |= INPUT_F_VIEW;
+	e->code = (uint16_t)env->layout[i];
+	e->x = vx;
+	e->y = vy;
+}
+
+void
+modes_input(struct modes *M, const struct input_event_rec *in, long px, long py)
+{
+	struct input_event_rec ev = *in;
+	const struct input_event_rec *e = &ev;
+	screen_pointer(M, &ev, px, py);
 	track_pointer(M, e, px, py);
 	enum interact_mode was = M->interact.mode;
 	if (!drive_menu(M, e) && !drive_prompt(M, e) && !drive_kiosk(M, e) &&

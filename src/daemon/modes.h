@@ -44,6 +44,7 @@ struct modes {
 	struct camera undo_view[ENV_MAX_VIEWS][MODES_VIEW_UNDO];
 	int nundo_view[ENV_MAX_VIEWS];
 	int pointer_view;                      /* the view the pointer was last in, -1: none yet */
+	double screen_x, screen_y;             /* the pointer on the kiosk's screen (a layout's) */
 	unsigned char own_parts[MODES_MAX_SEGMENTS]; /* §3.7.1: the parts around G, left out */
 	struct kiosk *kiosk;    /* the keyboard's edit line; NULL: keys go to the modes alone */
 	struct prompt prompt;   /* a command asking for its missing arguments */

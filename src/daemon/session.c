@@ -145,6 +145,12 @@ session_write(const struct env *e, FILE *f)
 		write_vec(f, v->target, 3);
 		fprintf(f, " fovy=%.17g\n", v->fovy_deg);
 	}
+	if (e->nlayout) {
+		fprintf(f, "layout");
+		for (int i = 0; i < e->nlayout; i++)
+			fprintf(f, " %s", e->view[e->layout[i]].name);
+		fprintf(f, "\n");
+	}
 	fprintf(f, "end\n");
 	return ferror(f) ? -1 : 0;
 }
@@ -531,6 +537,26 @@ read_view(struct reader *r, struct env *e)
 	return fail(r, "more than %d views", ENV_MAX_VIEWS);
 }
 
+/* layout VIEW...: the views tiled on the kiosk's screen, named above */
+static int
+read_layout(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	if (w->n < 2 || w->n - 1 > ENV_MAX_VIEWS)
+		return fail(r, "expected: layout VIEW... (1 to %d views defined above)", ENV_MAX_VIEWS);
+	for (int i = 1; i < w->n; i++) {
+		int v = env_find_view(e, w->w[i]);
+		for (int k = 0; v >= 0 && k < i - 1; k++)
+			if (e->layout[k] == v)
+				v = -1;
+		if (v < 0)
+			return fail(r, "layout: no view %s defined above, or named twice", w->w[i]);
+		e->layout[i - 1] = v;
+	}
+	e->nlayout = w->n - 1;
+	return 0;
+}
+
 int
 session_read(const char *text, size_t len, const char *base_dir, const char *library_dir,
 	     struct env *dest, char *err, size_t errlen)
@@ -571,6 +597,8 @@ session_read(const char *text, size_t len, const char *base_dir, const char *lib
 			ok = read_constraint(r, dest);
 		else if (!strcmp(kw, "view"))
 			ok = read_view(r, dest);
+		else if (!strcmp(kw, "layout"))
+			ok = read_layout(r, dest);
 		else if (!strcmp(kw, "behave") || !strcmp(kw, "bdef"))
 			ok = read_behave(r, dest);
 		else if (!strcmp(kw, "attach"))

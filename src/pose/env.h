@@ -91,6 +91,9 @@ struct env {
 	struct env_figure fig[ENV_MAX_FIGURES];
 	struct env_constraint con[ENV_MAX_CONSTRAINTS];
 	struct env_view view[ENV_MAX_VIEWS];
+	/* the kiosk's screen: the views tiled on it, in order (slots); 0: the first view alone */
+	int layout[ENV_MAX_VIEWS];
+	int nlayout;
 	struct env_attach att[ENV_MAX_ATTACH];
 	uint32_t next_gen;
 };
