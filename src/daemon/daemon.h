@@ -47,7 +47,9 @@ struct daemon_stats {
 	uint64_t frame;    /* frames run */
 	double fps;        /* measured over the last second */
 	double ik_us;      /* solver time in the last frame */
-	double draw_us;    /* drawing time in the last frame */
+	double draw_us;    /* rendering time of a frame's views, smoothed */
+	uint64_t stall_max_us; /* the longest loop round outside solving and drawing, in the
+				* last whole second the loop ran */
 	uint64_t budget_us; /* the solver's budget in the last frame */
 	int clients;
 	int iterations;    /* solver iterations in the last frame */

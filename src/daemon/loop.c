@@ -40,6 +40,8 @@ struct loop {
 	uint64_t virtual_us;  /* the clock of settle's frames */
 	uint64_t fps_t0, fps_frames;
 	uint64_t watchdog_us, watchdog_last;
+	uint64_t round_solve_us;  /* this poll round's solving, frames of settle included */
+	uint64_t stall_t0, stall_max; /* the second being measured, its longest stall so far */
 	struct events events; /* what the clients subscribed to */
 	struct input_queue input; /* from the devices and the socket's input lines */
 	struct can_map panel;     /* the dial panel's map, when one is given */
@@ -204,6 +206,7 @@ static int
 frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *changed)
 {
 	struct env *e = &L->d.env;
+	uint64_t start = real_now(NULL);
 	int busy = 0;
 	*changed = 0;
 	for (int i = 0; i < ENV_MAX_FIGURES; i++)
@@ -239,6 +242,7 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 			events_stability(&L->events, i);
 	}
 	L->d.stats.frame++;
+	L->round_solve_us += real_now(NULL) - start;
 	return 0;
 }
 
@@ -454,10 +458,10 @@ live_frame(struct loop *L)
 	uint64_t now = real_now(NULL);
 	L->scene.dirty |= changed;
 	events_posture_changes(&L->events);
-	uint64_t t0 = real_now(NULL);
+	uint64_t drawn = L->scene.drawn_us;
 	if (scene_publish(&L->scene, &L->d, &L->events, now)) {
-		/* drawing's share of the frame, smoothed: the solver gets the rest (§4.7.2) */
-		double us = (double)(real_now(NULL) - t0);
+		/* rendering's share of the frame, smoothed: the solver gets the rest (§4.7.2) */
+		double us = (double)(L->scene.drawn_us - drawn);
 		L->d.stats.draw_us = L->d.stats.draw_us ? 0.8 * L->d.stats.draw_us + 0.2 * us : us;
 	}
 	L->fps_frames++;
@@ -469,6 +473,26 @@ live_frame(struct loop *L)
 	if (L->watchdog_us && now - L->watchdog_last >= L->watchdog_us / 2) {
 		notify_send("WATCHDOG=1");
 		L->watchdog_last = now;
+	}
+}
+
+/*
+ * the round since t0 less its solving and rendering: how long the loop
+ * kept input, clients and the screen waiting for anything else
+ */
+static void
+round_end(struct loop *L, uint64_t t0, uint64_t drawn0)
+{
+	uint64_t now = real_now(NULL);
+	uint64_t work = L->round_solve_us + (L->scene.drawn_us - drawn0);
+	uint64_t stall = now - t0 > work ? now - t0 - work : 0;
+	if (stall > L->stall_max)
+		L->stall_max = stall;
+	/* published a second at a time, like fps: start-up stalls age out */
+	if (now - L->stall_t0 >= 1000000) {
+		L->d.stats.stall_max_us = L->stall_max;
+		L->stall_max = 0;
+		L->stall_t0 = now;
 	}
 }
 
@@ -635,7 +659,10 @@ loop_run(const struct loop_config *cfg)
 	static struct pollfd fds[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
 	static int owner[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
 	uint64_t next = real_now(NULL) + L->period_us;
+	uint64_t round_t0 = 0, round_drawn0 = 0; /* 0: no round to account yet */
 	while (!L->stop) {
+		if (round_t0)
+			round_end(L, round_t0, round_drawn0);
 		int n = server_pollfds(&L->srv, fds, owner);
 		fds[n] = (struct pollfd){ .fd = L->sig_fd, .events = POLLIN };
 		owner[n++] = -3;
@@ -654,6 +681,9 @@ loop_run(const struct loop_config *cfg)
 			fprintf(stderr, "postured: poll: %s\n", strerror(errno));
 			break;
 		}
+		round_t0 = real_now(NULL);
+		round_drawn0 = L->scene.drawn_us;
+		L->round_solve_us = 0;
 		for (int k = 0; k < n; k++) {
 			if (!fds[k].revents)
 				continue;

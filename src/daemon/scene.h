@@ -35,6 +35,7 @@ struct scene {
 	uint64_t last_png_us, last_event_us;
 	int dirty; /* something changed since the pictures were last published */
 	struct menu_layout menu_layout; /* the pop-up menu's rows as last laid out */
+	uint64_t drawn_us; /* time spent rendering so far, by d->now_us (the loop's stall measure) */
 };
 
 void scene_init(struct scene *sc, const char *frames_dir);
