@@ -12,7 +12,7 @@ WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototyp
 # libxkbcommon through pkg-config; before `make deps` has installed it, its plain name
 XKB_CFLAGS := $(shell pkg-config --cflags xkbcommon 2>/dev/null)
 XKB_LIBS := $(shell pkg-config --libs xkbcommon 2>/dev/null || echo -lxkbcommon)
-BASE    := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -I/usr/include/libusb-1.0 $(XKB_CFLAGS) -MMD -MP
+BASE    := -std=c11 -pthread -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -I/usr/include/libusb-1.0 $(XKB_CFLAGS) -MMD -MP
 LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -ludev -lhidapi-hidraw -lusb-1.0 $(XKB_LIBS) -lm
 TESTLIBS := -lcmocka -lnlopt
 # NLopt is the independent minimiser the IK tests and benchmarks compare against;
