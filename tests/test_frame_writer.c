@@ -130,7 +130,7 @@ static struct frame_writer *
 writer(void)
 {
 	char err[256];
-	struct frame_writer *w = frame_writer_make(err, sizeof err);
+	struct frame_writer *w = frame_writer_make(0, err, sizeof err);
 	assert_non_null(w);
 	return w;
 }

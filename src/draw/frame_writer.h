@@ -8,8 +8,9 @@
  * copies the frame into the waiting buffer and returns; a frame still
  * waiting when the next one comes is replaced and counted as dropped, so
  * the sink always gets the newest frame next and a slow sink falls behind
- * by at most one frame. The loop never waits for the thread: the lock
- * guards only pointer swaps, flags and counters (and the copy in).
+ * by at most one frame. The loop never waits for the thread: a slot is a
+ * triple buffer, handed over by one atomic exchange each way; a lock
+ * guards only what changes when a sink is attached.
  *
  * Errors a sink returns on the thread are kept (the newest message, and a
  * count) until the loop takes them with frame_writer_error.
@@ -33,8 +34,12 @@ struct frame_writer_stats {
 	uint64_t failed;  /* sink writes that returned -1 */
 };
 
-/* starts a writer and its thread. Returns it, or NULL with err (out of memory, no thread) */
-struct frame_writer *frame_writer_make(char *err, size_t errlen);
+/*
+ * Starts a writer and its thread, which runs at niceness nice (0: the
+ * caller's; higher: it yields the CPUs to the loop and the renderer).
+ * Returns it, or NULL with err (out of memory, no thread).
+ */
+struct frame_writer *frame_writer_make(int nice, char *err, size_t errlen);
 
 /*
  * Frames no longer taken; the newest frame waiting in each slot written,
