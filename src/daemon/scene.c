@@ -279,6 +279,63 @@ frame_event(struct scene *sc, struct events *E, const char *view, const struct f
 	events_send(E, SUB_FRAME);
 }
 
+/*
+ * the writer *w, made when first needed at niceness nice; NULL when no
+ * thread could be had (said once)
+ */
+static struct frame_writer *
+scene_writer(struct scene *sc, struct frame_writer **w, int nice)
+{
+	char err[256];
+	if (!*w && !sc->writer_failed && !(*w = frame_writer_make(nice, err, sizeof err))) {
+		fprintf(stderr, "postured: pictures not written: %s\n", err);
+		sc->writer_failed = 1;
+	}
+	return *w;
+}
+
+/* view v's picture to the screen's writer; the sink becomes the writer's on first use */
+static void
+scene_to_screen(struct scene *sc, const struct env_view *vw, const struct frame *f)
+{
+	char err[256];
+	if (!sc->screen) {
+		if (!scene_writer(sc, &sc->screen, 0))
+			return;
+		if (frame_writer_attach(sc->screen, 0, sc->fb, vw->width, vw->height, err,
+					sizeof err) < 0) {
+			fprintf(stderr, "postured: framebuffer: %s\n", err);
+			sc->fb = NULL; /* closed by the writer */
+			return;
+		}
+	}
+	if (frame_writer_submit(sc->screen, 0, f, err, sizeof err) < 0)
+		fprintf(stderr, "postured: framebuffer: %s\n", err);
+}
+
+/* view v's picture to the files' writer, its file (re)opened when new or renamed */
+static void
+scene_to_file(struct scene *sc, int v, const struct env_view *vw, const struct frame *f)
+{
+	char err[256];
+	if (!scene_writer(sc, &sc->files, SCENE_FILES_NICE))
+		return;
+	if (strcmp(sc->png_name[v], vw->name)) {
+		char path[4200];
+		snprintf(path, sizeof path, "%s/%s.png", sc->frames_dir, vw->name);
+		struct sink *s = sink_png_latest(path, err, sizeof err);
+		sc->png_name[v][0] = '\0';
+		if (!s || frame_writer_attach(sc->files, v, s, vw->width, vw->height, err,
+					      sizeof err) < 0) {
+			fprintf(stderr, "postured: frame file: %s\n", err);
+			return;
+		}
+		snprintf(sc->png_name[v], sizeof sc->png_name[v], "%s", vw->name);
+	}
+	if (frame_writer_submit(sc->files, v, f, err, sizeof err) < 0)
+		fprintf(stderr, "postured: frame file: %s\n", err);
+}
+
 int
 scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now)
 {
@@ -294,20 +351,11 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 		char err[256];
 		if (!vw->used || scene_draw(sc, d, v, &f, err, sizeof err) < 0)
 			continue;
-		if (first && sc->fb && sink_write(sc->fb, f, err, sizeof err) < 0)
-			fprintf(stderr, "postured: framebuffer: %s\n", err);
+		if (first && sc->fb)
+			scene_to_screen(sc, vw, f);
 		first = 0;
-		if (files) {
-			if (!sc->png[v] || strcmp(sc->png_name[v], vw->name)) {
-				char path[4200];
-				sink_close(sc->png[v]);
-				snprintf(path, sizeof path, "%s/%s.png", sc->frames_dir, vw->name);
-				sc->png[v] = sink_png_latest(path, err, sizeof err);
-				snprintf(sc->png_name[v], sizeof sc->png_name[v], "%s", vw->name);
-			}
-			if (sc->png[v] && sink_write(sc->png[v], f, err, sizeof err) < 0)
-				fprintf(stderr, "postured: frame file: %s\n", err);
-		}
+		if (files)
+			scene_to_file(sc, v, vw, f);
 		if (events)
 			frame_event(sc, E, vw->name, f);
 	}
@@ -319,12 +367,42 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 	return 1;
 }
 
+/* one writer's failures since the last look, logged under what it writes */
+static void
+scene_writer_errors(struct frame_writer *w, const char *what)
+{
+	char err[256];
+	uint64_t n = w ? frame_writer_error(w, err, sizeof err) : 0;
+	if (n == 1)
+		fprintf(stderr, "postured: %s: %s\n", what, err);
+	else if (n > 1)
+		fprintf(stderr, "postured: %s: %llu writes failed, the last: %s\n", what,
+			(unsigned long long)n, err);
+}
+
+void
+scene_sync(struct scene *sc, struct daemon *d)
+{
+	scene_writer_errors(sc->files, "frame file");
+	scene_writer_errors(sc->screen, "framebuffer");
+	struct frame_writer_stats a = { 0 }, b = { 0 };
+	if (sc->files)
+		frame_writer_stats(sc->files, &a);
+	if (sc->screen)
+		frame_writer_stats(sc->screen, &b);
+	d->stats.frames_written = a.written + b.written;
+	d->stats.frames_dropped = a.dropped + b.dropped;
+}
+
 void
 scene_free(struct scene *sc)
 {
-	for (int v = 0; v < ENV_MAX_VIEWS; v++)
-		sink_close(sc->png[v]);
-	sink_close(sc->fb);
+	/* the newest pictures written before the threads end */
+	frame_writer_free(sc->files);
+	if (sc->screen)
+		frame_writer_free(sc->screen); /* fb with it */
+	else
+		sink_close(sc->fb);
 	sink_png_encoder_free(&sc->enc);
 	view_drawlist_free(sc->dl);
 	free(sc->hemi);

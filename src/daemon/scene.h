@@ -3,6 +3,12 @@
  * renderer (made when first needed; without OSMesa the daemon runs on with
  * no pictures), written to a PNG file per view and the framebuffer, and
  * sent as frame events, at most SCENE_PERIOD_US apart.
+ *
+ * The loop only draws: files and the screen are written by two frame
+ * writers (draw/frame_writer.h) on threads of their own, one for the PNG
+ * files (encoding and fsync take tens of milliseconds) and one for the
+ * framebuffer (a pixel conversion of 1-2 ms a 1280x720 frame, measured),
+ * so a file being written never holds the screen back.
  */
 #ifndef POSTURE_SCENE_H
 #define POSTURE_SCENE_H
@@ -13,11 +19,18 @@
 #include "daemon/daemon.h"
 #include "daemon/events.h"
 #include "draw/frame.h"
+#include "draw/frame_writer.h"
 #include "draw/render.h"
 #include "draw/sink.h"
 #include "draw/view.h"
 
 #define SCENE_PERIOD_US 100000 /* frame files and frame events: at most 10 a second */
+/*
+ * the files' writer yields the CPUs to the loop and the renderer: PNG
+ * encoding at the same priority preempted the loop on a 2-core machine,
+ * and a file written late is only a file dropped
+ */
+#define SCENE_FILES_NICE 10
 
 struct scene {
 	struct render *r; /* made when first needed */
@@ -27,9 +40,11 @@ struct scene {
 	int mesh_base[ENV_MAX_FIGURES]; /* each figure's meshes in the renderer */
 	uint32_t mesh_gen[ENV_MAX_FIGURES];
 	const char *frames_dir; /* NULL: no frame files */
-	struct sink *png[ENV_MAX_VIEWS];
-	char png_name[ENV_MAX_VIEWS][MODEL_NAME_MAX];
-	struct sink *fb;             /* the first view goes here too, when set */
+	struct frame_writer *files; /* the views' PNG files, slot v for view v; made when needed */
+	char png_name[ENV_MAX_VIEWS][MODEL_NAME_MAX]; /* the file slot v writes; "": none yet */
+	struct sink *fb;             /* the first view goes here too, when set; then the screen's */
+	struct frame_writer *screen; /* writes fb; made when needed */
+	int writer_failed;           /* no thread for a writer: said once */
 	struct sink_png_encoder enc; /* frame events */
 	struct frame frame;          /* the last view drawn */
 	uint64_t last_png_us, last_event_us;
@@ -60,9 +75,16 @@ const struct hemi_map *scene_hemicube(struct scene *sc, struct daemon *d, const 
 				      char *err, size_t errlen);
 
 /*
- * After a frame that changed something: every view drawn, written and sent
- * where due at time now. Returns 1 when it drew, 0 when nothing was due.
+ * After a frame that changed something: every view drawn, handed to the
+ * writers and sent where due at time now. Returns 1 when it drew, 0 when
+ * nothing was due.
  */
 int scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now);
+
+/*
+ * The writers' news, without waiting for them: their failures logged (the
+ * newest message and how many) and their counters into d's stats.
+ */
+void scene_sync(struct scene *sc, struct daemon *d);
 
 #endif
