@@ -42,6 +42,7 @@ struct loop {
 	uint64_t watchdog_us, watchdog_last;
 	uint64_t round_solve_us;  /* this poll round's solving, frames of settle included */
 	uint64_t stall_t0, stall_max; /* the second being measured, its longest stall so far */
+	int idle; /* the last frame changed nothing: no ticks until something comes in */
 	struct events events; /* what the clients subscribed to */
 	struct input_queue input; /* from the devices and the socket's input lines */
 	struct can_map panel;     /* the dial panel's map, when one is given */
@@ -163,12 +164,14 @@ command_from_modes(void *ctx, const char *line)
 	run_own_command(ctx, line);
 }
 
-/* the input queued since the last frame, taken in order */
-static void
+/* the input queued since the last frame, taken in order; returns how many events */
+static int
 take_input(struct loop *L)
 {
 	struct input_event_rec e;
+	int n = 0;
 	while (input_queue_pop(&L->input, &e)) {
+		n++;
 		long px = 0, py = 0;
 		struct motion_scale *m = e.device < INPUT_DEVS_MAX ? &L->pointer[e.device]
 								   : &L->pointer[INPUT_DEVS_MAX];
@@ -186,6 +189,7 @@ take_input(struct loop *L)
 		modes_input(&L->modes, &e, px, py);
 	}
 	events_kiosk(&L->events);
+	return n;
 }
 
 /* ---- frames ------------------------------------------------------------------ */
@@ -443,20 +447,30 @@ open_signals(void)
 	return signalfd(-1, &set, SFD_NONBLOCK | SFD_CLOEXEC);
 }
 
-static void
+/*
+ * One frame of the running loop. Returns 1 when it changed nothing and
+ * nothing waits to be shown: the loop may stop ticking until something
+ * comes in. Clients following every frame (telemetry, stability) keep it
+ * ticking.
+ */
+static int
 live_frame(struct loop *L)
 {
 	struct ik_clock clock = { real_now, NULL };
 	int changed;
 	uint64_t draw = (uint64_t)L->d.stats.draw_us;
 	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
-	take_input(L);
+	/* what this frame changes on screen, apart from what was waiting already */
+	int waiting = L->scene.dirty;
+	L->scene.dirty = 0;
+	int moved = take_input(L) > 0;
 	modes_frame(&L->modes, real_now(NULL));
 	dials_frame(&L->dials, real_now(NULL));
 	events_kiosk(&L->events);
 	frame(L, &clock, budget, &changed);
 	uint64_t now = real_now(NULL);
-	L->scene.dirty |= changed;
+	moved |= changed || L->scene.dirty;
+	L->scene.dirty |= waiting || changed;
 	events_posture_changes(&L->events);
 	uint64_t drawn = L->scene.drawn_us;
 	if (scene_publish(&L->scene, &L->d, &L->events, now)) {
@@ -470,10 +484,21 @@ live_frame(struct loop *L)
 		L->fps_t0 = now;
 		L->fps_frames = 0;
 	}
-	if (L->watchdog_us && now - L->watchdog_last >= L->watchdog_us / 2) {
+	return !moved && !scene_waiting(&L->scene, &L->events) &&
+	       !events_wanted(&L->events, SUB_TELEMETRY | SUB_STABILITY);
+}
+
+/* systemd's watchdog, fed at half its period; returns ms to the next feed, -1: none */
+static int
+feed_watchdog(struct loop *L, uint64_t now)
+{
+	if (!L->watchdog_us)
+		return -1;
+	if (now - L->watchdog_last >= L->watchdog_us / 2) {
 		notify_send("WATCHDOG=1");
 		L->watchdog_last = now;
 	}
+	return (int)((L->watchdog_last + L->watchdog_us / 2 - now + 999) / 1000);
 }
 
 /*
@@ -658,7 +683,7 @@ loop_run(const struct loop_config *cfg)
 		cfg->tcp_port > 0 ? " and 127.0.0.1 (token required)" : "");
 	static struct pollfd fds[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
 	static int owner[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
-	uint64_t next = real_now(NULL) + L->period_us;
+	uint64_t next = real_now(NULL); /* a first frame at once: then idle, or ticking */
 	uint64_t round_t0 = 0, round_drawn0 = 0; /* 0: no round to account yet */
 	while (!L->stop) {
 		if (round_t0)
@@ -676,8 +701,10 @@ loop_run(const struct loop_config *cfg)
 		for (int k = 0; k < nd; k++)
 			owner[n++] = -100 - tags[k];
 		uint64_t now = real_now(NULL);
-		int timeout = now >= next ? 0 : (int)((next - now + 999) / 1000);
-		if (poll(fds, (nfds_t)n, timeout) < 0 && errno != EINTR) {
+		int watchdog_ms = feed_watchdog(L, now);
+		int timeout = L->idle ? watchdog_ms : now >= next ? 0 : (int)((next - now + 999) / 1000);
+		int got = poll(fds, (nfds_t)n, timeout);
+		if (got < 0 && errno != EINTR) {
 			fprintf(stderr, "postured: poll: %s\n", strerror(errno));
 			break;
 		}
@@ -699,8 +726,13 @@ loop_run(const struct loop_config *cfg)
 				 (fds[k].revents & (POLLIN | POLLHUP | POLLERR)))
 				client_input(L, owner[k]);
 		}
-		if (real_now(NULL) >= next) {
-			live_frame(L);
+		/* idle, anything coming in starts a frame at once; then the ticks go on */
+		if (L->idle && (got > 0 || L->input.len)) {
+			L->idle = 0;
+			next = real_now(NULL);
+		}
+		if (!L->idle && real_now(NULL) >= next) {
+			L->idle = live_frame(L);
 			next += L->period_us;
 			if (next < real_now(NULL)) /* fell behind: do not try to catch up */
 				next = real_now(NULL) + L->period_us;

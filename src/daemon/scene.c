@@ -367,6 +367,12 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 	return 1;
 }
 
+int
+scene_waiting(const struct scene *sc, const struct events *E)
+{
+	return sc->dirty && !sc->failed && (sc->frames_dir || sc->fb || events_wanted(E, SUB_FRAME));
+}
+
 /* one writer's failures since the last look, logged under what it writes */
 static void
 scene_writer_errors(struct frame_writer *w, const char *what)

@@ -81,6 +81,9 @@ const struct hemi_map *scene_hemicube(struct scene *sc, struct daemon *d, const 
  */
 int scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now);
 
+/* 1 when a changed picture waits to be published somewhere (files, screen, frame events) */
+int scene_waiting(const struct scene *sc, const struct events *E);
+
 /*
  * The writers' news, without waiting for them: their failures logged (the
  * newest message and how many) and their counters into d's stats.
