@@ -189,6 +189,8 @@ cmd_status(struct cmd_ctx *c)
 	json_object_set_new(c->result, "ik_us", json_real(s->ik_us));
 	json_object_set_new(c->result, "draw_us", json_real(s->draw_us));
 	json_object_set_new(c->result, "stall_max_us", json_integer((json_int_t)s->stall_max_us));
+	json_object_set_new(c->result, "stall_cpu_max_us",
+			    json_integer((json_int_t)s->stall_cpu_max_us));
 	json_object_set_new(c->result, "frames_written", json_integer((json_int_t)s->frames_written));
 	json_object_set_new(c->result, "frames_dropped", json_integer((json_int_t)s->frames_dropped));
 	json_object_set_new(c->result, "budget_us", json_integer((json_int_t)s->budget_us));

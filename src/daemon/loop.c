@@ -40,8 +40,13 @@ struct loop {
 	uint64_t virtual_us;  /* the clock of settle's frames */
 	uint64_t fps_t0, fps_frames;
 	uint64_t watchdog_us, watchdog_last;
-	uint64_t round_solve_us;  /* this poll round's solving, frames of settle included */
-	uint64_t stall_t0, stall_max; /* the second being measured, its longest stall so far */
+	/*
+	 * the poll round under way: its start, and its solving so far (frames of
+	 * settle included), in real time and in the loop thread's CPU time
+	 */
+	uint64_t round_t0, round_cpu0, round_drawn0, round_drawn_cpu0; /* round_t0 0: none yet */
+	uint64_t round_solve_us, round_solve_cpu_us;
+	uint64_t stall_t0, stall_max, stall_cpu_max; /* the second being measured, its longest */
 	int idle; /* the last frame changed nothing: no ticks until something comes in */
 	struct events events; /* what the clients subscribed to */
 	struct input_queue input; /* from the devices and the socket's input lines */
@@ -70,6 +75,15 @@ static uint64_t
 clock_us(void)
 {
 	return real_now(NULL);
+}
+
+/* the loop thread's own CPU time: a round's stall apart from the CPUs being busy elsewhere */
+static uint64_t
+thread_cpu_us(void)
+{
+	struct timespec t;
+	clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
 }
 
 /* settle's clock: every read advances it, so the time limit cuts alike on every run */
@@ -210,7 +224,7 @@ static int
 frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *changed)
 {
 	struct env *e = &L->d.env;
-	uint64_t start = real_now(NULL);
+	uint64_t start = real_now(NULL), start_cpu = thread_cpu_us();
 	int busy = 0;
 	*changed = 0;
 	for (int i = 0; i < ENV_MAX_FIGURES; i++)
@@ -247,6 +261,7 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 	}
 	L->d.stats.frame++;
 	L->round_solve_us += real_now(NULL) - start;
+	L->round_solve_cpu_us += thread_cpu_us() - start_cpu;
 	return 0;
 }
 
@@ -501,22 +516,41 @@ feed_watchdog(struct loop *L, uint64_t now)
 	return (int)((L->watchdog_last + L->watchdog_us / 2 - now + 999) / 1000);
 }
 
+/* a poll round begins: the clocks its stall is measured from */
+static void
+round_begin(struct loop *L)
+{
+	L->round_t0 = real_now(NULL);
+	L->round_cpu0 = thread_cpu_us();
+	L->round_drawn0 = L->scene.drawn_us;
+	L->round_drawn_cpu0 = L->scene.drawn_cpu_us;
+	L->round_solve_us = L->round_solve_cpu_us = 0;
+}
+
 /*
- * the round since t0 less its solving and rendering: how long the loop
- * kept input, clients and the screen waiting for anything else
+ * the round less its solving and rendering: how long the loop kept input,
+ * clients and the screen waiting for anything else; and how much of that
+ * was the loop's own work (its CPU time), not waiting for a CPU
  */
 static void
-round_end(struct loop *L, uint64_t t0, uint64_t drawn0)
+round_end(struct loop *L)
 {
-	uint64_t now = real_now(NULL);
-	uint64_t work = L->round_solve_us + (L->scene.drawn_us - drawn0);
-	uint64_t stall = now - t0 > work ? now - t0 - work : 0;
+	if (!L->round_t0)
+		return;
+	uint64_t now = real_now(NULL), cpu = thread_cpu_us() - L->round_cpu0;
+	uint64_t work = L->round_solve_us + (L->scene.drawn_us - L->round_drawn0);
+	uint64_t work_cpu = L->round_solve_cpu_us + (L->scene.drawn_cpu_us - L->round_drawn_cpu0);
+	uint64_t stall = now - L->round_t0 > work ? now - L->round_t0 - work : 0;
+	uint64_t stall_cpu = cpu > work_cpu ? cpu - work_cpu : 0;
 	if (stall > L->stall_max)
 		L->stall_max = stall;
+	if (stall_cpu > L->stall_cpu_max)
+		L->stall_cpu_max = stall_cpu;
 	/* published a second at a time, like fps: start-up stalls age out */
 	if (now - L->stall_t0 >= 1000000) {
 		L->d.stats.stall_max_us = L->stall_max;
-		L->stall_max = 0;
+		L->d.stats.stall_cpu_max_us = L->stall_cpu_max;
+		L->stall_max = L->stall_cpu_max = 0;
 		L->stall_t0 = now;
 	}
 }
@@ -634,6 +668,7 @@ loop_run(const struct loop_config *cfg)
 	L->d.input = &L->input;
 	L->d.now_us = clock_us;
 	scene_init(&L->scene, cfg->frames_dir);
+	L->scene.cpu_us = thread_cpu_us;
 	L->period_us = (uint64_t)(1e6 / cfg->fps);
 	L->srv.unix_fd = L->srv.tcp_fd = -1;
 	int status = 1;
@@ -684,10 +719,8 @@ loop_run(const struct loop_config *cfg)
 	static struct pollfd fds[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
 	static int owner[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
 	uint64_t next = real_now(NULL); /* a first frame at once: then idle, or ticking */
-	uint64_t round_t0 = 0, round_drawn0 = 0; /* 0: no round to account yet */
 	while (!L->stop) {
-		if (round_t0)
-			round_end(L, round_t0, round_drawn0);
+		round_end(L);
 		int n = server_pollfds(&L->srv, fds, owner);
 		fds[n] = (struct pollfd){ .fd = L->sig_fd, .events = POLLIN };
 		owner[n++] = -3;
@@ -708,9 +741,7 @@ loop_run(const struct loop_config *cfg)
 			fprintf(stderr, "postured: poll: %s\n", strerror(errno));
 			break;
 		}
-		round_t0 = real_now(NULL);
-		round_drawn0 = L->scene.drawn_us;
-		L->round_solve_us = 0;
+		round_begin(L);
 		for (int k = 0; k < n; k++) {
 			if (!fds[k].revents)
 				continue;

@@ -50,7 +50,9 @@ struct scene {
 	uint64_t last_png_us, last_event_us;
 	int dirty; /* something changed since the pictures were last published */
 	struct menu_layout menu_layout; /* the pop-up menu's rows as last laid out */
-	uint64_t drawn_us; /* time spent rendering so far, by d->now_us (the loop's stall measure) */
+	/* time spent rendering so far, by d->now_us and by cpu_us (the loop's stall measure) */
+	uint64_t drawn_us, drawn_cpu_us;
+	uint64_t (*cpu_us)(void); /* the calling thread's CPU time; NULL: not measured */
 };
 
 void scene_init(struct scene *sc, const char *frames_dir);
