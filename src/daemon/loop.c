@@ -28,6 +28,13 @@
 #include "pose/attach.h"
 #include "pose/behave.h"
 
+/*
+ * Idle, the loop still ticks this often: what waits on time alone (the
+ * dials' step ending after they have been still, a held button's release)
+ * happens at most this late, for a solve of a figure at rest each time.
+ */
+#define LOOP_IDLE_TICK_US 250000
+
 struct loop {
 	struct daemon d;
 	struct server srv;
@@ -47,7 +54,7 @@ struct loop {
 	uint64_t round_t0, round_cpu0, round_drawn0, round_drawn_cpu0; /* round_t0 0: none yet */
 	uint64_t round_solve_us, round_solve_cpu_us;
 	uint64_t stall_t0, stall_max, stall_cpu_max; /* the second being measured, its longest */
-	int idle; /* the last frame changed nothing: no ticks until something comes in */
+	int idle; /* the last frame changed nothing: slow ticks until something comes in */
 	struct events events; /* what the clients subscribed to */
 	struct input_queue input; /* from the devices and the socket's input lines */
 	struct can_map panel;     /* the dial panel's map, when one is given */
@@ -464,9 +471,9 @@ open_signals(void)
 
 /*
  * One frame of the running loop. Returns 1 when it changed nothing and
- * nothing waits to be shown: the loop may stop ticking until something
- * comes in. Clients following every frame (telemetry, stability) keep it
- * ticking.
+ * nothing waits to be shown: the loop may tick slowly (LOOP_IDLE_TICK_US)
+ * until something comes in. Clients following every frame (telemetry,
+ * stability) keep it at full rate.
  */
 static int
 live_frame(struct loop *L)
@@ -735,7 +742,9 @@ loop_run(const struct loop_config *cfg)
 			owner[n++] = -100 - tags[k];
 		uint64_t now = real_now(NULL);
 		int watchdog_ms = feed_watchdog(L, now);
-		int timeout = L->idle ? watchdog_ms : now >= next ? 0 : (int)((next - now + 999) / 1000);
+		int timeout = now >= next ? 0 : (int)((next - now + 999) / 1000);
+		if (watchdog_ms >= 0 && watchdog_ms < timeout)
+			timeout = watchdog_ms;
 		int got = poll(fds, (nfds_t)n, timeout);
 		if (got < 0 && errno != EINTR) {
 			fprintf(stderr, "postured: poll: %s\n", strerror(errno));
@@ -762,9 +771,10 @@ loop_run(const struct loop_config *cfg)
 			L->idle = 0;
 			next = real_now(NULL);
 		}
-		if (!L->idle && real_now(NULL) >= next) {
+		if (real_now(NULL) >= next) {
 			L->idle = live_frame(L);
-			next += L->period_us;
+			next += L->idle && L->period_us < LOOP_IDLE_TICK_US ? LOOP_IDLE_TICK_US
+									: L->period_us;
 			if (next < real_now(NULL)) /* fell behind: do not try to catch up */
 				next = real_now(NULL) + L->period_us;
 		}

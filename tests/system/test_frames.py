@@ -132,8 +132,9 @@ def test_no_pictures_while_nothing_changes(daemon_factory, tmp_path):
         time.sleep(1.0)
         s = c.request("status")
         assert s["frames_written"] == written
-        # idle: only the status requests themselves ran a frame each
-        assert s["frame"] - f0 <= 2, (f0, s["frame"])
+        # idle: a slow tick for what waits on time, and a frame for each status request,
+        # far from the 60 a second of a loop at work
+        assert s["frame"] - f0 < 20, (f0, s["frame"])
 
 
 def test_input_starts_a_frame_when_idle(daemon_factory):

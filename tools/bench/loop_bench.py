@@ -7,7 +7,7 @@ and lets it settle. Then:
 
 - idle: nothing happens for IDLE_S seconds; the daemon's CPU time (utime + stime of
   /proc/PID/stat) over that time, and the frames solved and pictures written meanwhile;
-- stall: change view (V, the left button held, the pointer swept to and fro by `input
+- stall: change view (F2, the left button held, the pointer swept to and fro by `input
   motion` lines, BATCH to a write) turns the camera for SWEEP_S seconds, so every frame
   has a new picture; `status` gives the longest loop round outside solving and rendering
   of each second (`stall_max_us`), and the same in the loop thread's own CPU time
@@ -74,8 +74,8 @@ def idle(c, pid):
 
 
 def sweep(c):
-    # change view: V, then the left button sweeps the camera round the figure
-    for line in ("input pointer main 640 360", "input key KEY_V down", "input key KEY_V up",
+    # change view (F2 at the kiosk), then the left button sweeps the camera round the figure
+    for line in ("input pointer main 640 360", "input key KEY_F2 down", "input key KEY_F2 up",
                  "input button left down"):
         c.request(line)
     w0 = c.request("status")
