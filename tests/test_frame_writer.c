@@ -392,6 +392,70 @@ test_png_on_thread(void **state)
 	rmdir(dir);
 }
 
+/* png (len bytes) decodes to the w x h frame in want */
+static void
+assert_png_is(const uint8_t *png, size_t len, const uint8_t *want, int w, int h)
+{
+	png_image img;
+	memset(&img, 0, sizeof img);
+	img.version = PNG_IMAGE_VERSION;
+	assert_true(png_image_begin_read_from_memory(&img, png, len));
+	img.format = PNG_FORMAT_RGBA;
+	assert_int_equal(img.width, w);
+	assert_int_equal(img.height, h);
+	uint8_t *got = malloc(4 * (size_t)w * (size_t)h);
+	assert_non_null(got);
+	assert_true(png_image_finish_read(&img, NULL, got, 0, NULL));
+	assert_memory_equal(got, want, 4 * (size_t)w * (size_t)h);
+	free(got);
+}
+
+/* the relay: PNGs made on the writer's thread, the newest taken here once */
+static void
+test_relay(void **state)
+{
+	(void)state;
+	enum { W = 21, H = 17 };
+	static uint8_t buf[4 * W * H], last[4 * W * H];
+	char err[256];
+	struct sink *r = sink_relay_open(err, sizeof err);
+	assert_non_null(r);
+	const uint8_t *png;
+	size_t len;
+	struct frame info;
+	assert_int_equal(sink_relay_take(r, &png, &len, &info), 0); /* nothing yet */
+
+	struct frame_writer *w = writer();
+	assert_int_equal(frame_writer_attach(w, 2, r, W, H, err, sizeof err), 0);
+	for (uint64_t k = 1; k <= 4; k++) {
+		struct frame f = make_frame(buf, W, H, 0, k);
+		for (int i = 3; i < 4 * W * H; i += 4)
+			buf[i] = 255;
+		assert_int_equal(frame_writer_submit(w, 2, &f, err, sizeof err), 0);
+	}
+	memcpy(last, buf, sizeof last);
+	frame_writer_flush(w);
+	assert_int_equal(sink_relay_take(r, &png, &len, &info), 1);
+	assert_int_equal(info.seq, 4);
+	assert_int_equal(info.width, W);
+	assert_int_equal(info.height, H);
+	assert_null(info.rgba);
+	assert_png_is(png, len, last, W, H);
+	assert_int_equal(sink_relay_take(r, &png, &len, &info), 0); /* taken */
+
+	/* written while the last one is held: the held PNG stays whole */
+	struct frame f = make_frame(buf, W, H, 0, 5);
+	for (int i = 3; i < 4 * W * H; i += 4)
+		buf[i] = 255;
+	assert_int_equal(frame_writer_submit(w, 2, &f, err, sizeof err), 0);
+	frame_writer_flush(w);
+	assert_png_is(png, len, last, W, H);
+	assert_int_equal(sink_relay_take(r, &png, &len, &info), 1);
+	assert_int_equal(info.seq, 5);
+	assert_png_is(png, len, buf, W, H);
+	frame_writer_free(w); /* closes r */
+}
+
 int
 main(void)
 {
@@ -404,6 +468,7 @@ main(void)
 		cmocka_unit_test(test_replace_sink),
 		cmocka_unit_test(test_no_allocation_per_frame),
 		cmocka_unit_test(test_png_on_thread),
+		cmocka_unit_test(test_relay),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -5,10 +5,12 @@
  *   sink_png.c   numbered PNG files, or one "latest" PNG replaced atomically
  *   sink_fb.c    /dev/fbN (or an ordinary file with a given fbdev geometry)
  *   sink_mem.c   the latest frame kept in memory, with its PNG on demand
+ *   sink_relay.c each frame as PNG, made on the writing thread, taken by another
  * Callers go through sink_write / sink_close. Every write returns 0, or -1
  * with a message naming what failed (the path, the errno text); a failed
  * write leaves the previous frame in place (file untouched, screen
- * unchanged, memory frame kept). Sinks are single-threaded objects.
+ * unchanged, memory frame kept). Sinks are single-threaded objects, but for
+ * sink_relay_take, made to be called from another thread than the writes.
  */
 #ifndef POSTURE_SINK_H
 #define POSTURE_SINK_H
@@ -117,6 +119,22 @@ const struct frame *sink_mem_frame(const struct sink *s);
  * failed).
  */
 int sink_mem_png(struct sink *s, const uint8_t **data, size_t *len, char *err, size_t errlen);
+
+/*
+ * Encodes each frame written as PNG and keeps the newest for another
+ * thread to take: a frame writer's thread encodes (frame_writer.h), the
+ * loop takes the PNG and sends it. Allocates only while the PNGs grow.
+ * Returns the sink, or NULL with a message in err.
+ */
+struct sink *sink_relay_open(char *err, size_t errlen);
+
+/*
+ * The newest PNG written to relay sink s and not taken yet: 1 with *data,
+ * *len (valid until the next take; 0 when that frame's encoding failed)
+ * and *info (the frame's size, seq and time; no pixels), else 0. Safe
+ * against writes on another thread; one taking thread.
+ */
+int sink_relay_take(struct sink *s, const uint8_t **data, size_t *len, struct frame *info);
 
 /*
  * A reusable PNG encoder (sink_png.c) for the PNG and memory sinks. libpng's
