@@ -52,7 +52,7 @@ struct daemon_stats {
 				* last whole second the loop ran */
 	uint64_t stall_cpu_max_us; /* the same in the loop thread's CPU time: its own work, not
 				    * its waits for a CPU */
-	uint64_t frames_written; /* pictures the frame writers wrote (files, screen) */
+	uint64_t frames_written; /* pictures the frame writers wrote (files, screen, events) */
 	uint64_t frames_dropped; /* pictures replaced by newer ones while a writer was behind */
 	uint64_t budget_us; /* the solver's budget in the last frame */
 	int clients;

@@ -786,7 +786,7 @@ loop_run(const struct loop_config *cfg)
 			if (journal_snapshot(&L->j, &L->d, 0) < 0)
 				fprintf(stderr, "postured: snapshot: %s\n", strerror(errno));
 		}
-		scene_sync(&L->scene, &L->d); /* the writers' failures and counters */
+		scene_sync(&L->scene, &L->d, &L->events); /* frame events, failures, counters */
 		L->d.stats.clients = L->srv.nclients;
 		for (int i = 0; i < SERVER_MAX_CLIENTS; i++)
 			if (L->srv.c[i].fd >= 0)

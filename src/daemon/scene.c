@@ -16,7 +16,6 @@ scene_init(struct scene *sc, const char *frames_dir)
 	memset(sc, 0, sizeof *sc);
 	sc->frames_dir = frames_dir;
 	sc->dirty = 1;
-	sink_png_encoder_init(&sc->enc);
 }
 
 /* the renderer and draw list, made when first needed; 0, or -1 with err */
@@ -261,13 +260,11 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	return 0;
 }
 
-/* the picture of a view as a frame event: PNG in base64 */
+/* the picture of a view as a frame event: its PNG (made on the files' thread) in base64 */
 static void
-frame_event(struct scene *sc, struct events *E, const char *view, const struct frame *f)
+frame_event(struct events *E, const char *view, const struct frame *f, const uint8_t *png,
+	    size_t len)
 {
-	char err[160];
-	if (sink_png_encode(&sc->enc, f, err, sizeof err) < 0)
-		return;
 	struct jbuf *j = events_begin(E, "frame", NULL);
 	jbuf_key(j, "view", 0);
 	jbuf_str(j, view);
@@ -276,10 +273,13 @@ frame_event(struct scene *sc, struct events *E, const char *view, const struct f
 	jbuf_key(j, "height", 0);
 	jbuf_int(j, f->height);
 	jbuf_key(j, "png", 0);
-	jbuf_base64(j, sc->enc.data, sc->enc.len);
+	jbuf_base64(j, png, len);
 	jbuf_raw(j, "}");
 	events_send(E, SUB_FRAME);
 }
+
+/* frame events' slots in the files' writer: after the views' files */
+_Static_assert(2 * ENV_MAX_VIEWS <= FRAME_WRITER_SLOTS, "a file and an event slot per view");
 
 /*
  * the writer *w, made when first needed at niceness nice; NULL when no
@@ -338,6 +338,28 @@ scene_to_file(struct scene *sc, int v, const struct env_view *vw, const struct f
 		fprintf(stderr, "postured: frame file: %s\n", err);
 }
 
+/* view v's picture to be encoded on the files' thread, for a frame event once it is */
+static void
+scene_to_events(struct scene *sc, int v, const struct env_view *vw, const struct frame *f)
+{
+	char err[256];
+	if (!scene_writer(sc, &sc->files, SCENE_FILES_NICE))
+		return;
+	if (!sc->relay[v]) {
+		struct sink *s = sink_relay_open(err, sizeof err);
+		if (!s || frame_writer_attach(sc->files, ENV_MAX_VIEWS + v, s, vw->width,
+					      vw->height, err, sizeof err) < 0) {
+			fprintf(stderr, "postured: frame events: %s\n", err);
+			return;
+		}
+		sc->relay[v] = s; /* the writer's; it lives as long as the writer */
+	}
+	if (frame_writer_submit(sc->files, ENV_MAX_VIEWS + v, f, err, sizeof err) < 0)
+		fprintf(stderr, "postured: frame events: %s\n", err);
+	else
+		sc->relay_pending[v] = 1;
+}
+
 int
 scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now)
 {
@@ -359,7 +381,7 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 		if (files)
 			scene_to_file(sc, v, vw, f);
 		if (events)
-			frame_event(sc, E, vw->name, f);
+			scene_to_events(sc, v, vw, f);
 	}
 	if (files)
 		sc->last_png_us = now;
@@ -372,6 +394,9 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 int
 scene_waiting(const struct scene *sc, const struct events *E)
 {
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		if (sc->relay_pending[v]) /* a frame event being encoded: the loop stays awake */
+			return 1;
 	return sc->dirty && !sc->failed && (sc->frames_dir || sc->fb || events_wanted(E, SUB_FRAME));
 }
 
@@ -389,8 +414,19 @@ scene_writer_errors(struct frame_writer *w, const char *what)
 }
 
 void
-scene_sync(struct scene *sc, struct daemon *d)
+scene_sync(struct scene *sc, struct daemon *d, struct events *E)
 {
+	/* the frame events whose PNGs the files' thread has made */
+	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
+		const uint8_t *png;
+		size_t len;
+		struct frame info;
+		if (!sc->relay[v] || !sink_relay_take(sc->relay[v], &png, &len, &info))
+			continue;
+		sc->relay_pending[v] = 0;
+		if (len && d->env.view[v].used) /* len 0: its encoding failed (logged below) */
+			frame_event(E, d->env.view[v].name, &info, png, len);
+	}
 	scene_writer_errors(sc->files, "frame file");
 	scene_writer_errors(sc->screen, "framebuffer");
 	struct frame_writer_stats a = { 0 }, b = { 0 };
@@ -411,7 +447,6 @@ scene_free(struct scene *sc)
 		frame_writer_free(sc->screen); /* fb with it */
 	else
 		sink_close(sc->fb);
-	sink_png_encoder_free(&sc->enc);
 	view_drawlist_free(sc->dl);
 	free(sc->hemi);
 	render_free(sc->r);

@@ -8,7 +8,9 @@
  * writers (draw/frame_writer.h) on threads of their own, one for the PNG
  * files (encoding and fsync take tens of milliseconds) and one for the
  * framebuffer (a pixel conversion of 1-2 ms a 1280x720 frame, measured),
- * so a file being written never holds the screen back.
+ * so a file being written never holds the screen back. Frame events'
+ * PNGs are made on the files' thread too (a relay sink per view) and sent
+ * by the loop when they are ready.
  */
 #ifndef POSTURE_SCENE_H
 #define POSTURE_SCENE_H
@@ -45,7 +47,9 @@ struct scene {
 	struct sink *fb;             /* the first view goes here too, when set; then the screen's */
 	struct frame_writer *screen; /* writes fb; made when needed */
 	int writer_failed;           /* no thread for a writer: said once */
-	struct sink_png_encoder enc; /* frame events */
+	/* frame events: view v's PNG made by relay[v] in the files' writer (slot ENV_MAX_VIEWS + v) */
+	struct sink *relay[ENV_MAX_VIEWS];
+	int relay_pending[ENV_MAX_VIEWS]; /* a picture handed over, its event not sent yet */
 	struct frame frame;          /* the last view drawn */
 	uint64_t last_png_us, last_event_us;
 	int dirty; /* something changed since the pictures were last published */
@@ -87,9 +91,10 @@ int scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t
 int scene_waiting(const struct scene *sc, const struct events *E);
 
 /*
- * The writers' news, without waiting for them: their failures logged (the
- * newest message and how many) and their counters into d's stats.
+ * The writers' news, without waiting for them: the frame events whose
+ * PNGs are ready sent to E, failures logged (the newest message and how
+ * many), the counters into d's stats.
  */
-void scene_sync(struct scene *sc, struct daemon *d);
+void scene_sync(struct scene *sc, struct daemon *d, struct events *E);
 
 #endif

@@ -1,13 +1,14 @@
 """The views' pictures off the loop: `--frames DIR` files written by the frame writer, the
 counters `status` reports, no pictures while nothing changes, and input starting a frame
 at once when the loop is idle."""
+import base64
 import struct
 import time
 import zlib
 
 import numpy as np
 
-from daemon import daemon_factory  # noqa: F401 (fixture)
+from daemon import daemon, daemon_factory  # noqa: F401 (fixtures)
 
 VIEW = "add view main width=320 height=240 eye=1.9,1.55,3.1 target=0,0.95,0"
 
@@ -118,6 +119,33 @@ def test_frames_dir_gets_the_views_picture(daemon_factory, tmp_path):
     d.stop()
     # the atomic replacement leaves no temporary file behind
     assert sorted(p.name for p in frames.iterdir()) == ["main.png"]
+
+
+def test_frame_events_carry_the_views_picture(daemon):
+    """`subscribe frame`: the PNG is made off the loop and still comes, whole, per change."""
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request(VIEW)
+        c.subscribe("frame")
+        seen = []
+        for eye in ("-1.9,1.55,3.1", "0,1.5,3.5"):
+            c.request(f"set camera main eye={eye} target=0,0.95,0")
+            deadline = time.monotonic() + 20
+            while time.monotonic() < deadline:
+                ev = c.next_event(timeout=1)
+                if ev and ev["event"] == "frame":
+                    break
+            else:
+                raise AssertionError("no frame event after the camera moved")
+            assert (ev["view"], ev["width"], ev["height"]) == ("main", 320, 240)
+            img = decode_png(base64.b64decode(ev["png"]))
+            assert img.shape == (240, 320, 4)
+            assert (img[:, :, 3] == 255).all()
+            seen.append(img)
+            time.sleep(0.2)  # at most 10 frame events a second
+            c.pending_events()
+        assert (seen[0] != seen[1]).any(), "the second picture shows the moved camera"
+        assert c.request("status")["frames_written"] >= 2
 
 
 def test_no_pictures_while_nothing_changes(daemon_factory, tmp_path):
