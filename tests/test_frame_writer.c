@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <fcntl.h>
+#include <linux/fb.h>
 #include <png.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -14,6 +16,7 @@
 
 #include "alloc_count.h"
 #include "draw/frame_writer.h"
+#include "draw/pixfmt.h"
 
 /* ---- a sink the test holds the door of ----------------------------------- */
 
@@ -456,6 +459,54 @@ test_relay(void **state)
 	frame_writer_free(w); /* closes r */
 }
 
+/* the framebuffer (over a file) on the thread: after a burst of frames it shows the newest */
+static void
+test_fb_shows_newest(void **state)
+{
+	(void)state;
+	enum { W = 24, H = 10 };
+	static uint8_t buf[4 * W * H], want[4 * W * H], got[4 * W * H];
+	char path[] = "/tmp/test_frame_writer_fb.XXXXXX", err[256];
+	int fd = mkstemp(path);
+	assert_true(fd >= 0);
+	assert_int_equal(ftruncate(fd, sizeof got), 0);
+	close(fd);
+
+	/* XRGB8888, W x H, one page: what the visible area holds is the file */
+	struct pixfmt pf;
+	assert_int_equal(pixfmt_from_name("XRGB8888", &pf, err, sizeof err), 0);
+	struct fb_var_screeninfo var = { .xres = W, .yres = H, .xres_virtual = W,
+					 .yres_virtual = H, .bits_per_pixel = 32 };
+	var.red = (struct fb_bitfield){ (uint32_t)pf.red.offset, (uint32_t)pf.red.length, 0 };
+	var.green = (struct fb_bitfield){ (uint32_t)pf.green.offset, (uint32_t)pf.green.length, 0 };
+	var.blue = (struct fb_bitfield){ (uint32_t)pf.blue.offset, (uint32_t)pf.blue.length, 0 };
+	var.transp = (struct fb_bitfield){ (uint32_t)pf.transp.offset, (uint32_t)pf.transp.length, 0 };
+	struct fb_fix_screeninfo fix = { .type = FB_TYPE_PACKED_PIXELS, .visual = FB_VISUAL_TRUECOLOR,
+					 .line_length = 4 * W, .smem_len = sizeof got };
+	struct sink *s = sink_fb_open_file(path, &var, &fix, err, sizeof err);
+	assert_non_null(s);
+
+	struct frame_writer *w = writer();
+	assert_int_equal(frame_writer_attach(w, 0, s, W, H, err, sizeof err), 0);
+	for (uint64_t k = 1; k <= 30; k++) {
+		struct frame f = make_frame(buf, W, H, 0, k);
+		assert_int_equal(frame_writer_submit(w, 0, &f, err, sizeof err), 0);
+	}
+	frame_writer_flush(w);
+	for (int y = 0; y < H; y++)
+		pixfmt_convert_row(&pf, buf + 4 * W * y, W, want + 4 * W * y);
+	fd = open(path, O_RDONLY);
+	assert_true(fd >= 0);
+	assert_int_equal(read(fd, got, sizeof got), (ssize_t)sizeof got);
+	close(fd);
+	assert_memory_equal(got, want, sizeof got);
+	struct frame_writer_stats st;
+	frame_writer_stats(w, &st);
+	assert_int_equal(st.written + st.dropped, 30); /* each frame shown or replaced */
+	frame_writer_free(w);
+	unlink(path);
+}
+
 int
 main(void)
 {
@@ -469,6 +520,7 @@ main(void)
 		cmocka_unit_test(test_no_allocation_per_frame),
 		cmocka_unit_test(test_png_on_thread),
 		cmocka_unit_test(test_relay),
+		cmocka_unit_test(test_fb_shows_newest),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
