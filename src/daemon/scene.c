@@ -194,7 +194,15 @@ edit_line(struct daemon *d, int width, char *dest, size_t len)
 		cols = (int)len - plen - 1;
 	struct editline_window w;
 	kiosk_visible(d->kiosk, cols, &w);
-	snprintf(dest, len, "%s%.*s", prompt, (int)w.len, w.text);
+	/* cols counts characters; a window of many-byte ones is cut to what dest holds */
+	size_t n = strlen(prompt), t = w.len;
+	if (n >= len)
+		n = len - 1;
+	if (n + t >= len)
+		t = len - 1 - n;
+	memcpy(dest, prompt, n);
+	memcpy(dest + n, w.text, t);
+	dest[n + t] = '\0';
 	return plen + w.cursor_col;
 }
 

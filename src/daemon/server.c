@@ -212,7 +212,8 @@ server_queue(struct server *s, int i, const char *data, size_t len)
 	}
 	if (c->out_len + len > c->out_cap) {
 		/* compact first, grow only when that is not enough */
-		memmove(c->out, c->out + c->out_off, c->out_len - c->out_off);
+		if (c->out_off) /* (a first reply: no buffer yet, nothing to move) */
+			memmove(c->out, c->out + c->out_off, c->out_len - c->out_off);
 		c->out_len -= c->out_off;
 		c->out_off = 0;
 		if (c->out_len + len > c->out_cap) {
