@@ -160,7 +160,7 @@ layout_reply(struct cmd_ctx *c)
 			    json_pack("[ii]", c->d->screen_w, c->d->screen_h));
 	json_t *tiles = json_array();
 	struct tiles T;
-	if (e->nlayout && tiles_make(&T, c->d->screen_w, c->d->screen_h, 2 * VIEW_LINE_PX,
+	if (e->nlayout && tiles_make(&T, c->d->screen_w, c->d->screen_h, 0,
 				     e->nlayout) == 0)
 		for (int i = 0; i < e->nlayout; i++)
 			json_array_append_new(tiles, json_pack("{sssisisisi}", "view",
@@ -195,7 +195,7 @@ cmd_layout(struct cmd_ctx *c)
 				return cmd_fail(c, "bad-argument", "view %s named twice", c->argv[i]);
 	}
 	struct tiles T;
-	if (tiles_make(&T, c->d->screen_w, c->d->screen_h, 2 * VIEW_LINE_PX, c->argc) < 0)
+	if (tiles_make(&T, c->d->screen_w, c->d->screen_h, 0, c->argc) < 0)
 		return cmd_fail(c, "bad-argument", "%d views do not fit a %dx%d screen", c->argc,
 				c->d->screen_w, c->d->screen_h);
 	for (int i = 0; i < c->argc; i++) {
@@ -259,6 +259,8 @@ base64(const uint8_t *p, size_t n)
 	return out;
 }
 
+static int reply_png(struct cmd_ctx *c, const struct frame *f, const char *to, const char *path);
+
 int
 cmd_render_view(struct cmd_ctx *c)
 {
@@ -275,6 +277,33 @@ cmd_render_view(struct cmd_ctx *c)
 	const struct frame *f;
 	if (c->d->render_view(c->d, v, &f, err, sizeof err) < 0)
 		return cmd_fail(c, "internal", "rendering failed: %s", err);
+	return reply_png(c, f, to, path);
+}
+
+/* render screen [to=PATH]: the kiosk's screen as the framebuffer shows it */
+int
+cmd_render_screen(struct cmd_ctx *c)
+{
+	static const char *const keys[] = { "to" };
+	if (only_keys(c, 0, keys, 1) < 0)
+		return -1;
+	const char *to = cmd_key(c, "to");
+	char path[4096], err[256];
+	if (to && cmd_path(c, to, 1, path, sizeof path) < 0)
+		return -1;
+	if (!c->d->render_screen)
+		return cmd_fail(c, "internal", "this daemon cannot render");
+	const struct frame *f;
+	if (c->d->render_screen(c->d, &f, err, sizeof err) < 0)
+		return cmd_fail(c, "not-found", "%s", err);
+	return reply_png(c, f, to, path);
+}
+
+/* a picture as the reply: a PNG in base64, or written to path (to, as the client named it) */
+static int
+reply_png(struct cmd_ctx *c, const struct frame *f, const char *to, const char *path)
+{
+	char err[256];
 	static struct sink_png_encoder enc; /* reused: the loop is single-threaded */
 	static int ready;
 	if (!ready) {

@@ -304,6 +304,13 @@ render_view(struct daemon *d, int v, const struct frame **dest, char *err, size_
 	return scene_draw(&L->scene, d, v, dest, err, errlen);
 }
 
+static int
+render_screen(struct daemon *d, const struct frame **dest, char *err, size_t errlen)
+{
+	struct loop *L = d->loop;
+	return scene_draw_screen(&L->scene, d, dest, err, errlen);
+}
+
 /* ---- requests ---------------------------------------------------------------- */
 
 static void
@@ -657,6 +664,7 @@ loop_run(const struct loop_config *cfg)
 	L->d.run_frame = settle_frame;
 	L->d.subscribe = subscribe;
 	L->d.render_view = render_view;
+	L->d.render_screen = render_screen;
 	L->d.set_input = set_input;
 	modes_init(&L->modes, &L->d, &L->scene, command_from_modes, L);
 	start_kiosk(L, cfg);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "draw/sink.h"
+#include "draw/tiles.h"
 #include "interact/menu_draw.h"
 
 void
@@ -167,6 +168,21 @@ add_hover(struct scene *sc, struct daemon *d)
 				view_line(sc->dl, c[k], c[k | b], yellow);
 }
 
+/* the view the kiosk's edit line shows in: the mode's, else the pointer's, else the first */
+static int
+kiosk_view(const struct daemon *d)
+{
+	const struct interact *ia = d->interact;
+	if (ia && ia->mode != INTERACT_NONE && ia->view >= 0)
+		return ia->view;
+	if (d->pointer_view >= 0 && d->env.view[d->pointer_view].used)
+		return d->pointer_view;
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		if (d->env.view[v].used)
+			return v;
+	return -1;
+}
+
 /*
  * The kiosk's edit line in place of the status while something is typed:
  * "> " and the line (or "value: " and a value typed in a mode), the part
@@ -246,7 +262,7 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	if (!(ia && ia->mode != INTERACT_NONE) && d->pointer_view == v)
 		view_add_pointer(sc->dl, d->pointer_x, d->pointer_y);
 	char status[VIEW_TEXT_LEN];
-	int caret = edit_line(d, vw->width, status, sizeof status);
+	int caret = v == kiosk_view(d) ? edit_line(d, vw->width, status, sizeof status) : -1;
 	if (caret < 0)
 		snprintf(status, sizeof status,
 			 "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
@@ -368,6 +384,90 @@ scene_to_events(struct scene *sc, int v, const struct env_view *vw, const struct
 		sc->relay_pending[v] = 1;
 }
 
+/*
+ * The screen's picture for a layout: made (and its gaps painted) when the
+ * screen's size is new, not each frame.
+ */
+static int
+screen_ready(struct scene *sc, int w, int h)
+{
+	if (sc->screen_rgba && sc->screen_w == w && sc->screen_h == h)
+		return 0;
+	uint8_t *p = malloc((size_t)w * (size_t)h * 4);
+	if (!p)
+		return -1;
+	for (size_t i = 0; i < (size_t)w * (size_t)h; i++) { /* the gaps: the bands' dark blue */
+		p[4 * i] = 20;
+		p[4 * i + 1] = 24;
+		p[4 * i + 2] = 32;
+		p[4 * i + 3] = 255;
+	}
+	free(sc->screen_rgba);
+	sc->screen_rgba = p;
+	sc->screen_w = w;
+	sc->screen_h = h;
+	return 0;
+}
+
+/* view f's picture into its tile of the screen, row by row (cut to the tile) */
+static void
+screen_put(struct scene *sc, const struct tile *t, const struct frame *f)
+{
+	int w = f->width < t->w ? f->width : t->w, h = f->height < t->h ? f->height : t->h;
+	for (int y = 0; y < h; y++)
+		memcpy(sc->screen_rgba + 4 * ((size_t)(t->y + y) * (size_t)sc->screen_w + (size_t)t->x),
+		       f->rgba + (size_t)y * (size_t)f->stride, 4 * (size_t)w);
+}
+
+/* view v's picture into the screen when the layout tiles it there */
+static void
+tile_view(struct scene *sc, const struct daemon *d, const struct tiles *T, int v,
+	  const struct frame *f)
+{
+	for (int i = 0; i < d->env.nlayout; i++)
+		if (d->env.layout[i] == v)
+			screen_put(sc, &T->t[i], f);
+}
+
+/* the screen, its views tiled in it as they were drawn, to the framebuffer */
+static void
+publish_screen(struct scene *sc)
+{
+	struct frame screen;
+	frame_init(&screen, sc->screen_w, sc->screen_h, sc->screen_rgba);
+	struct env_view whole = { .width = sc->screen_w, .height = sc->screen_h };
+	scene_to_screen(sc, &whole, &screen);
+}
+
+int
+scene_draw_screen(struct scene *sc, struct daemon *d, const struct frame **dest, char *err,
+		  size_t errlen)
+{
+	const struct env *e = &d->env;
+	if (!e->nlayout) {
+		for (int v = 0; v < ENV_MAX_VIEWS; v++)
+			if (e->view[v].used)
+				return scene_draw(sc, d, v, dest, err, errlen);
+		snprintf(err, errlen, "no view to show");
+		return -1;
+	}
+	struct tiles T;
+	if (tiles_make(&T, d->screen_w, d->screen_h, 0, e->nlayout) < 0 ||
+	    screen_ready(sc, d->screen_w, d->screen_h) < 0) {
+		snprintf(err, errlen, "the layout does not fit the screen");
+		return -1;
+	}
+	for (int i = 0; i < e->nlayout; i++) {
+		const struct frame *f;
+		if (scene_draw(sc, d, e->layout[i], &f, err, errlen) < 0)
+			return -1;
+		screen_put(sc, &T.t[i], f);
+	}
+	frame_init(&sc->screen_frame, sc->screen_w, sc->screen_h, sc->screen_rgba);
+	*dest = &sc->screen_frame;
+	return 0;
+}
+
 int
 scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now)
 {
@@ -377,13 +477,18 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 	if (!sc->dirty || (!files && !events && !sc->fb) || sc->failed)
 		return 0;
 	int first = 1;
+	struct tiles T;
+	int tiled = sc->fb && e->nlayout && tiles_make(&T, d->screen_w, d->screen_h, 0, e->nlayout) == 0 &&
+		    screen_ready(sc, d->screen_w, d->screen_h) == 0;
 	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
 		const struct env_view *vw = &e->view[v];
 		const struct frame *f;
 		char err[256];
 		if (!vw->used || scene_draw(sc, d, v, &f, err, sizeof err) < 0)
 			continue;
-		if (first && sc->fb)
+		if (tiled)
+			tile_view(sc, d, &T, v, f);
+		else if (first && sc->fb)
 			scene_to_screen(sc, vw, f);
 		first = 0;
 		if (files)
@@ -391,6 +496,8 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 		if (events)
 			scene_to_events(sc, v, vw, f);
 	}
+	if (tiled)
+		publish_screen(sc);
 	if (files)
 		sc->last_png_us = now;
 	if (events)
@@ -456,6 +563,7 @@ scene_free(struct scene *sc)
 	else
 		sink_close(sc->fb);
 	view_drawlist_free(sc->dl);
+	free(sc->screen_rgba);
 	free(sc->hemi);
 	render_free(sc->r);
 }

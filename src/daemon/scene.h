@@ -46,6 +46,10 @@ struct scene {
 	char png_name[ENV_MAX_VIEWS][MODEL_NAME_MAX]; /* the file slot v writes; "": none yet */
 	struct sink *fb;             /* the first view goes here too, when set; then the screen's */
 	struct frame_writer *screen; /* writes fb; made when needed */
+	/* the kiosk's screen with the layout's views tiled on it, composed for fb */
+	uint8_t *screen_rgba;
+	int screen_w, screen_h;
+	struct frame screen_frame;
 	int writer_failed;           /* no thread for a writer: said once */
 	/* frame events: view v's PNG made by relay[v] in the files' writer (slot ENV_MAX_VIEWS + v) */
 	struct sink *relay[ENV_MAX_VIEWS];
@@ -68,6 +72,14 @@ void scene_free(struct scene *sc);
  */
 int scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
 	       size_t errlen);
+
+/*
+ * The kiosk's screen as the framebuffer shows it: with a layout, its views
+ * drawn now and tiled; without, the first view. Valid until the next
+ * drawing. 0, or -1 with err.
+ */
+int scene_draw_screen(struct scene *sc, struct daemon *d, const struct frame **dest, char *err,
+		      size_t errlen);
 
 /*
  * §3.7.1's visibility map from origin towards dir (the camera) over the
