@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "daemon/cmd_ctx.h"
+#include "draw/frame_writer.h"
 #include "daemon/session.h"
 #include "daemon/statefile.h"
 
@@ -179,6 +180,27 @@ cmd_settle(struct cmd_ctx *c)
 	return 0;
 }
 
+static int
+by_value(const void *a, const void *b)
+{
+	uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+	return (x > y) - (x < y);
+}
+
+/* input to pixels on the framebuffer, over the newest frames that showed input; null: none */
+static json_t *
+latency(struct daemon *d)
+{
+	static uint64_t v[FRAME_WRITER_LATENCIES]; /* the loop is single-threaded */
+	int n = d->input_latencies ? d->input_latencies(d, v, FRAME_WRITER_LATENCIES) : 0;
+	if (n <= 0)
+		return json_null();
+	qsort(v, (size_t)n, sizeof *v, by_value);
+	return json_pack("{sfsfsfsi}", "median", (double)v[n / 2] / 1000,
+			 "p99", (double)v[(n * 99) / 100] / 1000, "max", (double)v[n - 1] / 1000,
+			 "n", n);
+}
+
 int
 cmd_status(struct cmd_ctx *c)
 {
@@ -193,6 +215,7 @@ cmd_status(struct cmd_ctx *c)
 			    json_integer((json_int_t)s->stall_cpu_max_us));
 	json_object_set_new(c->result, "frames_written", json_integer((json_int_t)s->frames_written));
 	json_object_set_new(c->result, "frames_dropped", json_integer((json_int_t)s->frames_dropped));
+	json_object_set_new(c->result, "latency_ms", latency(c->d));
 	json_object_set_new(c->result, "budget_us", json_integer((json_int_t)s->budget_us));
 	json_object_set_new(c->result, "clients", json_integer(s->clients));
 	json_object_set_new(c->result, "figures", json_integer(env_count(&c->d->env)));

@@ -109,6 +109,8 @@ struct daemon {
 	/* renders view v now; the frame stays valid until the next rendering */
 	int (*render_view)(struct daemon *d, int v, const struct frame **dest, char *err,
 			   size_t errlen);
+	/* input to pixels on the framebuffer: the newest samples (us), oldest first; NULL: none */
+	int (*input_latencies)(struct daemon *d, uint64_t *dest, int max);
 	/* the kiosk's screen now, as the framebuffer shows it (a layout's views tiled) */
 	int (*render_screen)(struct daemon *d, const struct frame **dest, char *err, size_t errlen);
 	char message[256]; /* the message line under the pictures (§1.7) */

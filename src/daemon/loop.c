@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <inttypes.h>
 #include <jansson.h>
+#include <linux/fb.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,6 +42,7 @@ struct loop {
 	struct journal j;
 	struct complete complete; /* Tab at the kiosk's edit line */
 	struct dials dials;       /* the dial panel's bindings at work */
+	int screen_given;         /* --screen: the kiosk's screen is not the framebuffer's */
 	int sig_fd;
 	uint64_t period_us;
 	uint64_t synced_seq;  /* the last journal record known to be on disk */
@@ -205,6 +207,8 @@ take_input(struct loop *L)
 			fprintf(stderr, "postured: Ctrl+Alt+Backspace: the kiosk grab given up "
 					"('set input grab=yes' takes it again)\n");
 		}
+		if (!L->scene.input_us && e.kind != INPUT_FRAME) /* the oldest the pictures owe */
+			L->scene.input_us = e.t_us;
 		events_input(&L->events, &e, px, py);
 		dials_input(&L->dials, &e);
 		modes_input(&L->modes, &e, px, py);
@@ -302,6 +306,13 @@ render_view(struct daemon *d, int v, const struct frame **dest, char *err, size_
 {
 	struct loop *L = d->loop;
 	return scene_draw(&L->scene, d, v, dest, err, errlen);
+}
+
+static int
+input_latencies(struct daemon *d, uint64_t *dest, int max)
+{
+	struct loop *L = d->loop;
+	return scene_latencies(&L->scene, dest, max);
 }
 
 static int
@@ -433,6 +444,50 @@ start_kiosk(struct loop *L, const struct loop_config *cfg)
 	L->modes.run_typed = typed_at_kiosk;
 	L->d.kiosk = L->modes.kiosk;
 	snprintf(L->d.keymap, sizeof L->d.keymap, "%s", cfg->keymap ? cfg->keymap : "us");
+}
+
+/*
+ * The framebuffer: a device (/dev/fbN), or file:PATH:WxH, an ordinary file
+ * standing for the memory of a 32-bit XRGB framebuffer of that size (for
+ * the benchmarks and tests, which have no device). Its size is the
+ * kiosk's screen unless --screen gave one.
+ */
+static struct sink *
+open_fb(const char *spec, struct loop *L, char *err, size_t errlen)
+{
+	struct sink *s;
+	int w = 0, h = 0;
+	if (!strncmp(spec, "file:", 5)) {
+		char path[4096];
+		const char *colon = strrchr(spec + 5, ':');
+		int used = 0;
+		if (!colon || (size_t)(colon - spec - 5) >= sizeof path ||
+		    sscanf(colon + 1, "%dx%d%n", &w, &h, &used) != 2 || colon[1 + used] || w < 16 ||
+		    h < 16 || w > 16384 || h > 16384) {
+			snprintf(err, errlen, "file:PATH:WxH, such as file:/tmp/fb:1280x720");
+			return NULL;
+		}
+		snprintf(path, sizeof path, "%.*s", (int)(colon - spec - 5), spec + 5);
+		struct fb_var_screeninfo var = { .xres = (unsigned)w, .yres = (unsigned)h,
+						 .xres_virtual = (unsigned)w, .yres_virtual = (unsigned)h,
+						 .bits_per_pixel = 32 };
+		var.red = (struct fb_bitfield){ 16, 8, 0 };
+		var.green = (struct fb_bitfield){ 8, 8, 0 };
+		var.blue = (struct fb_bitfield){ 0, 8, 0 };
+		struct fb_fix_screeninfo fix = { .line_length = 4u * (unsigned)w,
+						 .smem_len = 4u * (unsigned)w * (unsigned)h,
+						 .visual = FB_VISUAL_TRUECOLOR };
+		s = sink_fb_open_file(path, &var, &fix, err, errlen);
+	} else {
+		s = sink_fb_open(spec, err, errlen);
+		if (s)
+			sink_fb_size(s, &w, &h);
+	}
+	if (s && w > 0 && !L->screen_given) {
+		L->d.screen_w = w;
+		L->d.screen_h = h;
+	}
+	return s;
 }
 
 /* a first start: the init file's commands, journaled like a client's */
@@ -665,10 +720,12 @@ loop_run(const struct loop_config *cfg)
 	L->d.subscribe = subscribe;
 	L->d.render_view = render_view;
 	L->d.render_screen = render_screen;
+	L->d.input_latencies = input_latencies;
 	L->d.set_input = set_input;
 	modes_init(&L->modes, &L->d, &L->scene, command_from_modes, L);
 	start_kiosk(L, cfg);
 	L->d.picked.fig = -1;
+	L->screen_given = cfg->screen_w > 0;
 	L->d.screen_w = cfg->screen_w ? cfg->screen_w : 1280;
 	L->d.screen_h = cfg->screen_h ? cfg->screen_h : 720;
 	dials_init(&L->dials, &L->modes);
@@ -705,7 +762,7 @@ loop_run(const struct loop_config *cfg)
 		fprintf(stderr, "postured: bindings: %s\n", err);
 		goto out;
 	}
-	if (cfg->fb_device && !(L->scene.fb = sink_fb_open(cfg->fb_device, err, sizeof err))) {
+	if (cfg->fb_device && !(L->scene.fb = open_fb(cfg->fb_device, L, err, sizeof err))) {
 		fprintf(stderr, "postured: framebuffer %s: %s\n", cfg->fb_device, err);
 		goto out;
 	}

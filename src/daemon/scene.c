@@ -275,6 +275,7 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 		snprintf(err, errlen, "render_frame failed");
 		return -1;
 	}
+	sc->frame.input_us = sc->input_us;
 	sc->frame.seq = d->stats.frame;
 	*dest = &sc->frame;
 	if (d->now_us)
@@ -435,6 +436,7 @@ publish_screen(struct scene *sc)
 {
 	struct frame screen;
 	frame_init(&screen, sc->screen_w, sc->screen_h, sc->screen_rgba);
+	screen.input_us = sc->input_us;
 	struct env_view whole = { .width = sc->screen_w, .height = sc->screen_h };
 	scene_to_screen(sc, &whole, &screen);
 }
@@ -498,6 +500,7 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 	}
 	if (tiled)
 		publish_screen(sc);
+	sc->input_us = 0; /* shown: the next pictures' latency counts from newer input */
 	if (files)
 		sc->last_png_us = now;
 	if (events)
@@ -526,6 +529,12 @@ scene_writer_errors(struct frame_writer *w, const char *what)
 	else if (n > 1)
 		fprintf(stderr, "postured: %s: %llu writes failed, the last: %s\n", what,
 			(unsigned long long)n, err);
+}
+
+int
+scene_latencies(struct scene *sc, uint64_t *dest, int max)
+{
+	return sc->screen ? frame_writer_latencies(sc->screen, dest, max) : 0;
 }
 
 void

@@ -57,6 +57,7 @@ struct scene {
 	struct frame frame;          /* the last view drawn */
 	uint64_t last_png_us, last_event_us;
 	int dirty; /* something changed since the pictures were last published */
+	uint64_t input_us; /* the oldest input taken since the last pictures (0: none), for latency */
 	struct menu_layout menu_layout; /* the pop-up menu's rows as last laid out */
 	/* time spent rendering so far, by d->now_us and by cpu_us (the loop's stall measure) */
 	uint64_t drawn_us, drawn_cpu_us;
@@ -64,6 +65,12 @@ struct scene {
 };
 
 void scene_init(struct scene *sc, const char *frames_dir);
+/*
+ * The newest input-to-pixels latencies of the framebuffer (frame_writer.h):
+ * up to max into dest, oldest first; how many there are (0: no framebuffer).
+ */
+int scene_latencies(struct scene *sc, uint64_t *dest, int max);
+
 void scene_free(struct scene *sc);
 
 /*

@@ -17,9 +17,12 @@ struct frame {
 	uint8_t *rgba;	   /* 8-bit R,G,B,A per pixel, rows top to bottom */
 	uint64_t seq;	   /* frame number */
 	uint64_t t_us;	   /* frame time, microseconds */
+	/* CLOCK_MONOTONIC of the oldest input event this frame is the first to show, 0: none
+	 * (for the input-to-pixels latency, measured when a sink has written it) */
+	uint64_t input_us;
 };
 
-/* a w x h frame over buf with tightly packed rows (stride 4 * w), seq and time 0 */
+/* a w x h frame over buf with tightly packed rows (stride 4 * w), seq and times 0 */
 static inline void
 frame_init(struct frame *f, int w, int h, uint8_t *buf)
 {
@@ -29,6 +32,7 @@ frame_init(struct frame *f, int w, int h, uint8_t *buf)
 	f->rgba = buf;
 	f->seq = 0;
 	f->t_us = 0;
+	f->input_us = 0;
 }
 
 #endif

@@ -57,8 +57,32 @@ struct frame_writer {
 	struct frame_writer_slot slot[FRAME_WRITER_SLOTS];
 	atomic_uint_fast64_t written, dropped, failed;
 	uint64_t errors; /* under the lock: failures the caller has not taken */
+	/* under the lock: input-to-pixels samples, a ring of the newest */
+	uint64_t lat[FRAME_WRITER_LATENCIES];
+	uint64_t nlat;
 	char err[256];	 /* the newest one's message */
 };
+
+static uint64_t
+monotonic_us(void)
+{
+	struct timespec t;
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+}
+
+int
+frame_writer_latencies(struct frame_writer *w, uint64_t *dest, int max)
+{
+	pthread_mutex_lock(&w->lock);
+	uint64_t n = w->nlat < FRAME_WRITER_LATENCIES ? w->nlat : FRAME_WRITER_LATENCIES;
+	if ((uint64_t)max < n)
+		n = (uint64_t)max;
+	for (uint64_t i = 0; i < n; i++)
+		dest[i] = w->lat[(w->nlat - n + i) % FRAME_WRITER_LATENCIES];
+	pthread_mutex_unlock(&w->lock);
+	return (int)n;
+}
 
 /* takes slot i's fresh frame, if any: 1 with *sink to write it with, else 0. Locked */
 static int
@@ -99,6 +123,7 @@ frame_writer_pass(struct frame_writer *w)
 
 		char err[sizeof w->err];
 		int r = sink ? sink_write(sink, &s->f[s->front], err, sizeof err) : 0;
+		uint64_t input_us = s->f[s->front].input_us, now = input_us ? monotonic_us() : 0;
 		if (r == 0 && sink)
 			atomic_fetch_add(&w->written, 1);
 		else if (!sink)
@@ -109,6 +134,8 @@ frame_writer_pass(struct frame_writer *w)
 			atomic_fetch_add(&w->failed, 1);
 			w->errors++;
 			memcpy(w->err, err, sizeof err);
+		} else if (sink && input_us && now >= input_us) {
+			w->lat[w->nlat++ % FRAME_WRITER_LATENCIES] = now - input_us;
 		}
 		/* a sink replaced meanwhile goes now (closing frees, unmaps: no waiting on a disk) */
 		sink_close(s->retired);
@@ -320,6 +347,7 @@ frame_writer_submit(struct frame_writer *w, int slot, const struct frame *f, cha
 	frame_init(d, f->width, f->height, b);
 	d->seq = f->seq;
 	d->t_us = f->t_us;
+	d->input_us = f->input_us;
 
 	/* the newest frame wins: one still fresh in mid is replaced */
 	unsigned old = atomic_exchange(&s->mid, (unsigned)s->back | FRESH);

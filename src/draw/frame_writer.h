@@ -75,6 +75,16 @@ uint64_t frame_writer_error(struct frame_writer *w, char *err, size_t errlen);
 /* the counters so far, summed over the slots */
 void frame_writer_stats(struct frame_writer *w, struct frame_writer_stats *dest);
 
+#define FRAME_WRITER_LATENCIES 512 /* input-to-pixels samples kept, the newest */
+
+/*
+ * Input to pixels: for each frame written that carried input_us, the time
+ * from that event to the end of the sink's write (CLOCK_MONOTONIC, us).
+ * Copies up to max of the newest samples into dest, oldest first; returns
+ * how many. Waits only for the writer's lock (held a few instructions).
+ */
+int frame_writer_latencies(struct frame_writer *w, uint64_t *dest, int max);
+
 /* waits until every frame submitted so far is written or has failed (tests, shutdown) */
 void frame_writer_flush(struct frame_writer *w);
 

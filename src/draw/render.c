@@ -773,6 +773,7 @@ render_frame(struct render *r, const struct drawlist *dl, uint64_t t_us, struct 
 	dest->rgba = r->buf;
 	dest->seq = ++r->seq;
 	dest->t_us = t_us;
+	dest->input_us = 0; /* the caller's to set: which input the picture is the first to show */
 	return 0;
 }
 

@@ -102,6 +102,9 @@ struct sink *sink_fb_open_file(const char *path, const struct fb_var_screeninfo 
 /* the visible page (0: yoffset 0, 1: yoffset yres) when s double-buffers, else -1 */
 int sink_fb_page(const struct sink *s);
 
+/* the framebuffer's visible size (xres x yres) into *w, *h: 0, or -1 for another sink */
+int sink_fb_size(const struct sink *s, int *w, int *h);
+
 /*
  * Keeps a copy of the latest frame for the daemon to send to clients. The
  * pixel buffer only grows, so frames no larger than one seen before cost no

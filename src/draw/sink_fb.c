@@ -310,3 +310,14 @@ sink_fb_page(const struct sink *s)
 		return -1;
 	return fb->page;
 }
+
+int
+sink_fb_size(const struct sink *s, int *w, int *h)
+{
+	const struct sink_fb *fb = (const struct sink_fb *)s;
+	if (s->ops != &sink_fb_ops)
+		return -1;
+	*w = fb->xres;
+	*h = fb->yres;
+	return 0;
+}

@@ -94,6 +94,9 @@ static const struct group_key group_table[] = {
 	{ "render", "view", G_VIEWS },
 	{ "delete", "view", G_VIEWS },
 	{ "list", "views", G_VIEWS },
+	{ "layout", "", G_VIEWS },
+	{ "get", "layout", G_VIEWS },
+	{ "render", "screen", G_VIEWS },
 
 	{ "save", "posture", G_FILES },
 	{ "load", "posture", G_FILES },
