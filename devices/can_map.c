@@ -538,16 +538,6 @@ can_map_read(const char *path, struct can_map *dest, char *err, size_t errlen)
 	return rc;
 }
 
-/* the shortest %g form of v that reads back as v */
-static void
-number_write(char *dest, size_t n, double v)
-{
-	for (int prec = 15; prec <= 17; prec++) {
-		snprintf(dest, n, "%.*g", prec, v);
-		if (strtod(dest, NULL) == v)
-			return;
-	}
-}
 
 static const char *
 kind_to_str(enum can_map_kind k)
@@ -578,16 +568,16 @@ can_map_write(FILE *out, const struct can_map *m)
 			l->start, l->length, l->order == CAN_MAP_INTEL ? '1' : '0',
 			l->is_signed ? '-' : '+', l->name);
 		if (l->factor != 1) {
-			number_write(a, sizeof a, l->factor);
+			textfile_number_write(a, sizeof a, l->factor);
 			fprintf(out, " factor=%s", a);
 		}
 		if (l->offset != 0 || signbit(l->offset)) {
-			number_write(a, sizeof a, l->offset);
+			textfile_number_write(a, sizeof a, l->offset);
 			fprintf(out, " offset=%s", a);
 		}
 		if (l->has_clamp) {
-			number_write(a, sizeof a, l->clamp_min);
-			number_write(b, sizeof b, l->clamp_max);
+			textfile_number_write(a, sizeof a, l->clamp_min);
+			textfile_number_write(b, sizeof b, l->clamp_max);
 			fprintf(out, " clamp=%s,%s", a, b);
 		}
 		if (l->stale_ms != CAN_MAP_STALE_DEFAULT_MS)

@@ -76,3 +76,13 @@ textfile_hex_digit(char c)
 		return c - 'A' + 10;
 	return -1;
 }
+
+void
+textfile_number_write(char *dest, size_t n, double v)
+{
+	for (int prec = 15; prec <= 17; prec++) {
+		snprintf(dest, n, "%.*g", prec, v);
+		if (strtod(dest, NULL) == v)
+			return;
+	}
+}

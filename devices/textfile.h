@@ -28,4 +28,7 @@ int textfile_fail(char *err, size_t errlen, const char *name, unsigned line, con
 /* the value of a hexadecimal digit (either case), or -1: every reader of hex text uses it */
 int textfile_hex_digit(char c);
 
+/* the shortest %g form of v (15 to 17 digits) that reads back as v: a file written and read is v */
+void textfile_number_write(char *dest, size_t n, double v);
+
 #endif

@@ -130,16 +130,6 @@ unit_to_str(enum dial_unit u)
 	return "";
 }
 
-/* the shortest %g form of v that reads back as v */
-static void
-number_write(char *dest, size_t n, double v)
-{
-	for (int prec = 15; prec <= 17; prec++) {
-		snprintf(dest, n, "%.*g", prec, v);
-		if (strtod(dest, NULL) == v)
-			return;
-	}
-}
 
 /* 1 when s is 1..max-1 letters, digits, '_', '.' or '-' */
 static int
@@ -804,14 +794,14 @@ dial_bind_write(FILE *out, const struct dial_bind *t)
 	fprintf(out, "bindings %d\n", DIAL_BIND_VERSION);
 	for (int i = 0; i < t->ndial; i++) {
 		const struct dial_bind_dial *d = &t->dial[i];
-		number_write(num, sizeof num, d->gain_written);
+		textfile_number_write(num, sizeof num, d->gain_written);
 		fprintf(out, "dial %s %s gain=%s%s", d->name,
 			dial_target_to_str(&d->target, target, sizeof target), num,
 			unit_to_str(d->gain_unit));
 		if (d->invert)
 			fprintf(out, " invert");
 		if (d->dead != 0) {
-			number_write(num, sizeof num, d->dead);
+			textfile_number_write(num, sizeof num, d->dead);
 			fprintf(out, " dead=%s", num);
 		}
 		fputc('\n', out);
