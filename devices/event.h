@@ -45,6 +45,16 @@ struct input_event_rec {
 
 #define INPUT_DEVICE_SOCKET 0xffff
 
+#include <linux/input-event-codes.h>
+
+/* a press or release of the left, middle or right mouse button: the manipulation's buttons */
+static inline int
+input_is_mouse_button(const struct input_event_rec *e)
+{
+	return e->kind == INPUT_BUTTON &&
+	       (e->code == BTN_LEFT || e->code == BTN_MIDDLE || e->code == BTN_RIGHT);
+}
+
 /* a short lowercase name of the kind, for logs and the decoders' text output */
 const char *input_kind_to_str(enum input_kind k);
 

@@ -17,6 +17,7 @@
 #include "daemon/complete.h"
 #include "daemon/dials.h"
 #include "daemon/events.h"
+#include "daemon/kiosk_route.h"
 #include "daemon/modes.h"
 #include "daemon/notify.h"
 #include "daemon/scene.h"
@@ -211,7 +212,7 @@ take_input(struct loop *L)
 			L->scene.input_us = e.t_us;
 		events_input(&L->events, &e, px, py);
 		dials_input(&L->dials, &e);
-		modes_input(&L->modes, &e, px, py);
+		kiosk_route_input(&L->modes, &e, px, py);
 	}
 	events_kiosk(&L->events);
 	return n;

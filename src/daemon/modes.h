@@ -62,8 +62,17 @@ struct modes {
 void modes_init(struct modes *M, struct daemon *d, struct scene *scene,
 		void (*run_command)(void *ctx, const char *line), void *ctx);
 
-/* one input event (px, py: a motion in pixels): change view first, else the mode */
-void modes_input(struct modes *M, const struct input_event_rec *e, long px, long py);
+/*
+ * One input event (px, py: a motion in pixels) for change view: 1 when it
+ * took it (V enters it from any mode; inside, everything is its own).
+ */
+int modes_view_input(struct modes *M, const struct input_event_rec *e, long px, long py);
+/* ... else for the interactive mode, its target applied at once */
+void modes_mode_input(struct modes *M, const struct input_event_rec *e, long px, long py);
+/* the pointer outside a mode followed (where S picks, a prompt picks, the menu opens) */
+void modes_track_pointer(struct modes *M, const struct input_event_rec *e, long px, long py);
+/* change view is running in the view the keys would go to */
+int modes_viewing(const struct modes *M);
 
 /* once a frame: the snaps' and adjustments' in-betweens */
 void modes_frame(struct modes *M, uint64_t now_us);
