@@ -304,7 +304,9 @@ frame_event(struct events *E, const char *view, const struct frame *f, const uin
 }
 
 /* frame events' slots in the files' writer: after the views' files */
-_Static_assert(2 * ENV_MAX_VIEWS <= FRAME_WRITER_SLOTS, "a file and an event slot per view");
+/* the files' writer's slot for the screen's picture, after a file and an event slot per view */
+#define SCENE_SCREEN_SLOT (2 * ENV_MAX_VIEWS)
+_Static_assert(SCENE_SCREEN_SLOT < FRAME_WRITER_SLOTS, "a file and an event slot per view, the screen");
 
 /*
  * the writer *w, made when first needed at niceness nice; NULL when no
@@ -430,15 +432,40 @@ tile_view(struct scene *sc, const struct daemon *d, const struct tiles *T, int v
 			screen_put(sc, &T->t[i], f);
 }
 
-/* the screen, its views tiled in it as they were drawn, to the framebuffer */
+/* the screen's picture to FRAMES/screen.png, through the files' writer */
 static void
-publish_screen(struct scene *sc)
+screen_to_file(struct scene *sc, const struct frame *f)
+{
+	char err[256];
+	if (!scene_writer(sc, &sc->files, SCENE_FILES_NICE))
+		return;
+	if (!sc->screen_file) {
+		char path[4200];
+		snprintf(path, sizeof path, "%s/screen.png", sc->frames_dir);
+		struct sink *s = sink_png_latest(path, err, sizeof err);
+		if (!s || frame_writer_attach(sc->files, SCENE_SCREEN_SLOT, s, f->width, f->height, err,
+					      sizeof err) < 0) {
+			fprintf(stderr, "postured: screen file: %s\n", err);
+			return;
+		}
+		sc->screen_file = 1;
+	}
+	if (frame_writer_submit(sc->files, SCENE_SCREEN_SLOT, f, err, sizeof err) < 0)
+		fprintf(stderr, "postured: screen file: %s\n", err);
+}
+
+/* the screen, its views tiled in it as they were drawn, to the framebuffer and the files */
+static void
+publish_screen(struct scene *sc, int files)
 {
 	struct frame screen;
 	frame_init(&screen, sc->screen_w, sc->screen_h, sc->screen_rgba);
 	screen.input_us = sc->input_us;
 	struct env_view whole = { .width = sc->screen_w, .height = sc->screen_h };
-	scene_to_screen(sc, &whole, &screen);
+	if (sc->fb)
+		scene_to_screen(sc, &whole, &screen);
+	if (files)
+		screen_to_file(sc, &screen);
 }
 
 int
@@ -480,7 +507,8 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 		return 0;
 	int first = 1;
 	struct tiles T;
-	int tiled = sc->fb && e->nlayout && tiles_make(&T, d->screen_w, d->screen_h, 0, e->nlayout) == 0 &&
+	int tiled = (sc->fb || files) && e->nlayout &&
+		    tiles_make(&T, d->screen_w, d->screen_h, 0, e->nlayout) == 0 &&
 		    screen_ready(sc, d->screen_w, d->screen_h) == 0;
 	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
 		const struct env_view *vw = &e->view[v];
@@ -499,7 +527,7 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 			scene_to_events(sc, v, vw, f);
 	}
 	if (tiled)
-		publish_screen(sc);
+		publish_screen(sc, files);
 	sc->input_us = 0; /* shown: the next pictures' latency counts from newer input */
 	if (files)
 		sc->last_png_us = now;

@@ -50,6 +50,7 @@ struct scene {
 	uint8_t *screen_rgba;
 	int screen_w, screen_h;
 	struct frame screen_frame;
+	int screen_file; /* FRAMES/screen.png has its slot in the files' writer */
 	int writer_failed;           /* no thread for a writer: said once */
 	/* frame events: view v's PNG made by relay[v] in the files' writer (slot ENV_MAX_VIEWS + v) */
 	struct sink *relay[ENV_MAX_VIEWS];

@@ -24,7 +24,7 @@
 #include "draw/frame.h"
 #include "draw/sink.h"
 
-#define FRAME_WRITER_SLOTS 16 /* sinks per writer */
+#define FRAME_WRITER_SLOTS 17 /* sinks per writer: the daemon's 8 views' files and events, the screen */
 
 struct frame_writer;
 

@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from daemon import ROOT, daemon_factory  # noqa: F401 (fixture)
+from daemon import ROOT, daemon_factory, write_picture  # noqa: F401 (fixture)
 
 PANEL = ["--panel", str(ROOT / "tests" / "input" / "can" / "panel.map"),
          "--bindings", str(ROOT / "tools" / "panel.bindings")]
@@ -36,6 +36,7 @@ def test_the_dial_box_turns_the_picked_joint_and_a_turn_is_one_undo(daemon_facto
         c.request("input valuator Dials.Dial2 55")  # +30 -> 35 degrees in all
         assert c.request("get joint human elbow_r")["values"][0] == pytest.approx(
             math.radians(35), abs=1e-12)
+        write_picture(c, "front", "dials_elbow.png")
         c.request("input valuator Dials.Dial2 1000")  # far past the limit: clamped
         upper = c.request("get joint human elbow_r")["upper"][0]
         assert c.request("get joint human elbow_r")["values"][0] == pytest.approx(upper, abs=1e-12)
@@ -58,6 +59,8 @@ def test_the_view_turns_and_zooms_on_its_dials(daemon_factory):
         c.request("input valuator Knobs.KnobC 0")
         c.request("input valuator Knobs.KnobC 0.5")  # zoom 0.5 m back
         assert math.dist(view(c)["eye"], [0, 1, 0]) == pytest.approx(3.5, abs=1e-9)
+        c.request("load human as human")
+        write_picture(c, "front", "dials_view.png")
 
 
 def test_elevation_and_torso_dials_drive_the_behaviours(daemon_factory):
@@ -73,6 +76,8 @@ def test_elevation_and_torso_dials_drive_the_behaviours(daemon_factory):
         flex = sum(posture[f"spine_{k}"][0] for k in range(18))
         flex0 = sum(spine0[f"spine_{k}"][0] for k in range(18))
         assert flex - flex0 == pytest.approx(math.radians(10), abs=1e-9)
+        c.request("add view front width=320 height=240 eye=2.5,1.2,2 target=0,1,0")
+        write_picture(c, "front", "dials_torso.png")
         assert com0 is not None
 
 

@@ -74,3 +74,22 @@ def test_render_screen_composes_the_tiles(daemon_factory):
                 for x in range(120, 200, 3):
                     assert px[y][x0 + x] == view[y][x], (name, x, y)
 
+
+
+def test_frame_files_hold_the_screen_of_a_layout(daemon_factory, tmp_path):
+    """with a layout, --frames also gets screen.png: the screen as the framebuffer shows it"""
+    import time
+    frames = tmp_path / "frames"
+    d = daemon_factory(frames=str(frames), extra=["--screen", "642x300"])
+    with d.client() as c:
+        c.request("add view front width=320 height=240 eye=0,1,3 target=0,1,0")
+        c.request("add view side width=320 height=240 eye=3,1,0.2 target=0,1,0")
+        c.request("layout front side")
+        c.request("load human as bob")
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and not (frames / "screen.png").exists():
+            time.sleep(0.05)
+        w, h, px = png_pixels((frames / "screen.png").read_bytes())
+        assert (w, h) == (642, 300)
+        assert px[150][320][:3] == (20, 24, 32)  # the gap
+        assert (frames / "front.png").exists() and (frames / "side.png").exists()
