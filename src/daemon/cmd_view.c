@@ -5,6 +5,7 @@
 
 #include "daemon/cmd_ctx.h"
 #include "daemon/daemon.h"
+#include "daemon/scene.h"
 #include "draw/sink.h"
 #include "draw/tiles.h"
 #include "daemon/statefile.h"
@@ -160,7 +161,7 @@ layout_reply(struct cmd_ctx *c)
 			    json_pack("[ii]", c->d->screen_w, c->d->screen_h));
 	json_t *tiles = json_array();
 	struct tiles T;
-	if (e->nlayout && tiles_make(&T, c->d->screen_w, c->d->screen_h, 0,
+	if (e->nlayout && tiles_make(&T, c->d->screen_w, c->d->screen_h, SCENE_BAND,
 				     e->nlayout) == 0)
 		for (int i = 0; i < e->nlayout; i++)
 			json_array_append_new(tiles, json_pack("{sssisisisi}", "view",
@@ -195,7 +196,7 @@ cmd_layout(struct cmd_ctx *c)
 				return cmd_fail(c, "bad-argument", "view %s named twice", c->argv[i]);
 	}
 	struct tiles T;
-	if (tiles_make(&T, c->d->screen_w, c->d->screen_h, 0, c->argc) < 0)
+	if (tiles_make(&T, c->d->screen_w, c->d->screen_h, SCENE_BAND, c->argc) < 0)
 		return cmd_fail(c, "bad-argument", "%d views do not fit a %dx%d screen", c->argc,
 				c->d->screen_w, c->d->screen_h);
 	for (int i = 0; i < c->argc; i++) {

@@ -278,7 +278,7 @@ screen_pointer(struct modes *M, struct input_event_rec *e, long px, long py)
 	const struct env *env = &M->d->env;
 	struct tiles T;
 	if (!env->nlayout || (e->kind != INPUT_MOTION && e->kind != INPUT_POINTER) ||
-	    tiles_make(&T, M->d->screen_w, M->d->screen_h, 0, env->nlayout) < 0)
+	    tiles_make(&T, M->d->screen_w, M->d->screen_h, SCENE_BAND, env->nlayout) < 0)
 		return;
 	if (e->kind == INPUT_POINTER && (e->flags & INPUT_F_VIEW)) {
 		for (int i = 0; i < env->nlayout; i++) /* a view's pixel: where it is on the screen */

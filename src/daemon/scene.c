@@ -222,6 +222,37 @@ edit_line(struct daemon *d, int width, char *dest, size_t len)
 	return plen + w.cursor_col;
 }
 
+static int
+in_layout(const struct env *e, int v)
+{
+	for (int i = 0; i < e->nlayout; i++)
+		if (e->layout[i] == v)
+			return 1;
+	return 0;
+}
+
+/*
+ * The message and status lines, width pixels wide, for view v: the edit
+ * line in the kiosk's view (a prompt, a value), else the view's figures;
+ * the operator's refusal, while there is one, over the daemon's message.
+ */
+static void
+add_lines(struct scene *sc, struct daemon *d, int v, int width)
+{
+	const struct env_view *vw = &d->env.view[v];
+	const struct interact *ia = d->interact;
+	int manipulating = ia && ia->mode != INTERACT_NONE && ia->view == v;
+	char status[VIEW_TEXT_LEN];
+	int caret = v == kiosk_view(d) ? edit_line(d, width, status, sizeof status) : -1;
+	if (caret < 0)
+		snprintf(status, sizeof status,
+			 "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
+			 (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
+			 d->stats.draw_us / 1000);
+	view_add_status(sc->dl, status, manipulating && ia->message[0] ? ia->message : d->message,
+			caret);
+}
+
 int
 scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
 	   size_t errlen)
@@ -261,16 +292,9 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	/* outside a mode the kiosk's pointer is drawn where it is (a mode draws its own) */
 	if (!(ia && ia->mode != INTERACT_NONE) && d->pointer_view == v)
 		view_add_pointer(sc->dl, d->pointer_x, d->pointer_y);
-	char status[VIEW_TEXT_LEN];
-	int caret = v == kiosk_view(d) ? edit_line(d, vw->width, status, sizeof status) : -1;
-	if (caret < 0)
-		snprintf(status, sizeof status,
-			 "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
-			 (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
-			 d->stats.draw_us / 1000);
-	/* the operator's refusal, while there is one, over the daemon's message */
-	view_add_status(sc->dl, status, manipulating && ia->message[0] ? ia->message : d->message,
-			caret);
+	/* a view on a layout's screen leaves its lines to the screen's band */
+	if (!in_layout(e, v))
+		add_lines(sc, d, v, vw->width);
 	if (render_frame(sc->r, sc->dl, d->stats.frame, &sc->frame) < 0) {
 		snprintf(err, errlen, "render_frame failed");
 		return -1;
@@ -422,6 +446,29 @@ screen_put(struct scene *sc, const struct tile *t, const struct frame *f)
 		       f->rgba + (size_t)y * (size_t)f->stride, 4 * (size_t)w);
 }
 
+/*
+ * The screen's band: the kiosk's view's lines drawn across the whole
+ * screen on an opaque ground, and put at the screen's bottom.
+ */
+static int
+screen_band(struct scene *sc, struct daemon *d)
+{
+	int v = kiosk_view(d);
+	if (v < 0)
+		return -1;
+	struct camera cam;
+	view_camera_of_view(&d->env.view[v], &cam);
+	view_begin(sc->dl, &cam, sc->screen_w, SCENE_BAND);
+	static const uint8_t ground[4] = { 20, 24, 32, 255 };
+	view_add_rect(sc->dl, 0, 0, sc->screen_w, SCENE_BAND, ground);
+	add_lines(sc, d, v, sc->screen_w);
+	if (render_frame(sc->r, sc->dl, d->stats.frame, &sc->frame) < 0)
+		return -1;
+	struct tile band = { 0, sc->screen_h - SCENE_BAND, sc->screen_w, SCENE_BAND };
+	screen_put(sc, &band, &sc->frame);
+	return 0;
+}
+
 /* view v's picture into the screen when the layout tiles it there */
 static void
 tile_view(struct scene *sc, const struct daemon *d, const struct tiles *T, int v,
@@ -456,8 +503,9 @@ screen_to_file(struct scene *sc, const struct frame *f)
 
 /* the screen, its views tiled in it as they were drawn, to the framebuffer and the files */
 static void
-publish_screen(struct scene *sc, int files)
+publish_screen(struct scene *sc, struct daemon *d, int files)
 {
+	screen_band(sc, d);
 	struct frame screen;
 	frame_init(&screen, sc->screen_w, sc->screen_h, sc->screen_rgba);
 	screen.input_us = sc->input_us;
@@ -481,7 +529,7 @@ scene_draw_screen(struct scene *sc, struct daemon *d, const struct frame **dest,
 		return -1;
 	}
 	struct tiles T;
-	if (tiles_make(&T, d->screen_w, d->screen_h, 0, e->nlayout) < 0 ||
+	if (tiles_make(&T, d->screen_w, d->screen_h, SCENE_BAND, e->nlayout) < 0 ||
 	    screen_ready(sc, d->screen_w, d->screen_h) < 0) {
 		snprintf(err, errlen, "the layout does not fit the screen");
 		return -1;
@@ -491,6 +539,10 @@ scene_draw_screen(struct scene *sc, struct daemon *d, const struct frame **dest,
 		if (scene_draw(sc, d, e->layout[i], &f, err, errlen) < 0)
 			return -1;
 		screen_put(sc, &T.t[i], f);
+	}
+	if (screen_band(sc, d) < 0) {
+		snprintf(err, errlen, "the screen's band could not be drawn");
+		return -1;
 	}
 	frame_init(&sc->screen_frame, sc->screen_w, sc->screen_h, sc->screen_rgba);
 	*dest = &sc->screen_frame;
@@ -508,7 +560,7 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 	int first = 1;
 	struct tiles T;
 	int tiled = (sc->fb || files) && e->nlayout &&
-		    tiles_make(&T, d->screen_w, d->screen_h, 0, e->nlayout) == 0 &&
+		    tiles_make(&T, d->screen_w, d->screen_h, SCENE_BAND, e->nlayout) == 0 &&
 		    screen_ready(sc, d->screen_w, d->screen_h) == 0;
 	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
 		const struct env_view *vw = &e->view[v];
@@ -527,7 +579,7 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 			scene_to_events(sc, v, vw, f);
 	}
 	if (tiled)
-		publish_screen(sc, files);
+		publish_screen(sc, d, files);
 	sc->input_us = 0; /* shown: the next pictures' latency counts from newer input */
 	if (files)
 		sc->last_png_us = now;

@@ -34,6 +34,9 @@
  */
 #define SCENE_FILES_NICE 10
 
+/* the band at the bottom of a layout's screen: its message and status (edit) lines */
+#define SCENE_BAND (2 * VIEW_LINE_PX)
+
 struct scene {
 	struct render *r; /* made when first needed */
 	int failed;       /* OSMesa could not start: no pictures */

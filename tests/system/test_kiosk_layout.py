@@ -1,8 +1,8 @@
 """The kiosk's screen shared by several views (issue 14): `layout` tiles them on the screen
-(--screen here, the framebuffer's size on a kiosk), each resized to its tile and keeping its
-own message and status lines; the pointer is the screen's and moves across the tiles; the
-layout is part of the session and survives a kill; `render screen` is what the framebuffer
-shows. The tiles are worked out here from the grid's rule."""
+(--screen here, the framebuffer's size on a kiosk) above one band for the message and
+status lines, each view resized to its tile; the pointer is the screen's and moves across
+the tiles; the layout is part of the session and survives a kill; `render screen` is what
+the framebuffer shows. The tiles are worked out here from the grid's rule."""
 import base64
 import os
 import pathlib
@@ -19,12 +19,12 @@ def test_layout_tiles_the_views_and_the_pointer_crosses_them(daemon_factory):
         for name in ("front", "side", "top"):
             c.request(f"add view {name} width=320 height=240 eye=0,1,3 target=0,1,0")
         reply = c.request("layout front side")
-        # 1282 - 2 px gap = 2 x 640, the whole height each
+        # 1282 - 2 px gap = 2 x 640; 760 - 40 px band = 720 high
         assert reply["screen"] == [1282, 760]
-        assert reply["tiles"] == [{"view": "front", "x": 0, "y": 0, "width": 640, "height": 760},
-                                  {"view": "side", "x": 642, "y": 0, "width": 640, "height": 760}]
+        assert reply["tiles"] == [{"view": "front", "x": 0, "y": 0, "width": 640, "height": 720},
+                                  {"view": "side", "x": 642, "y": 0, "width": 640, "height": 720}]
         sizes = {v["name"]: (v["width"], v["height"]) for v in c.request("list views")["views"]}
-        assert sizes == {"front": (640, 760), "side": (640, 760), "top": (320, 240)}
+        assert sizes == {"front": (640, 720), "side": (640, 720), "top": (320, 240)}
         # the pointer from the screen's top left: 700 px right is 58 px into side
         c.request("input motion 700 10")
         assert c.request("get kiosk")["pointer"] == {"view": "side", "x": 58.0, "y": 10.0}
@@ -34,7 +34,7 @@ def test_layout_tiles_the_views_and_the_pointer_crosses_them(daemon_factory):
         assert c.request("get kiosk")["pointer"]["view"] == "front"
         three = c.request("layout front side top")["tiles"]
         assert [(t["x"], t["y"], t["width"], t["height"]) for t in three] == [
-            (0, 0, 640, 379), (642, 0, 640, 379), (0, 381, 640, 379)]
+            (0, 0, 640, 359), (642, 0, 640, 359), (0, 361, 640, 359)]
         for bad in ("layout front front", "layout nowhere", "layout"):
             assert not c.request_reply(bad)["ok"], bad
     d.kill9()
@@ -50,7 +50,8 @@ def test_layout_tiles_the_views_and_the_pointer_crosses_them(daemon_factory):
 def test_render_screen_composes_the_tiles(daemon_factory):
     """`render screen` is what the framebuffer shows: each view's picture in its tile (the
     middle of each tile compared with the view rendered alone), the gap between them the
-    bands' dark blue; without a layout, the first view."""
+    bands' dark blue, the band across the bottom with the kiosk's lines; without a layout,
+    the first view."""
     d = daemon_factory(extra=["--screen", "642x300"])
     with d.client() as c:
         c.request("load human as bob")
@@ -67,7 +68,11 @@ def test_render_screen_composes_the_tiles(daemon_factory):
         (out / "kiosk_screen.png").write_bytes(data)
         w, h, px = png_pixels(data)
         assert all(px[y][320][:3] == (20, 24, 32) and px[y][321][:3] == (20, 24, 32)
-                   for y in range(0, 300, 7))
+                   for y in range(0, 260, 7))
+        # the band: dark ground across the whole width, with the status line's light text
+        band = [px[y][x][:3] for y in range(260, 300) for x in range(642)]
+        assert band.count((20, 24, 32)) > len(band) // 2
+        assert any(min(p) > 180 for p in band)
         for name, x0 in (("front", 0), ("side", 322)):
             _, _, view = png_pixels(base64.b64decode(c.request(f"render view {name}")["png"]))
             for y in range(100, 160, 3):
