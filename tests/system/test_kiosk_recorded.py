@@ -1,8 +1,10 @@
 """The kiosk end to end through recorded input (issue 14): under umockdev a keyboard and a
 mouse replay evemu recordings made here (the kernel's codes from its own header) on the
 daemon's real evdev path: the keyboard types commands at the edit line, the mouse drags
-the figure in the mode they started, the keyboard's ESC ends it. The journal holds the
-typed commands and the drag's step; the picture goes to the test output."""
+the figure in the mode they started, the keyboard's ESC ends it. Then a HID mouse (a
+hid-tools recording's descriptor) replays reports through hidapi's hidraw path and drags.
+The journal holds the typed commands and the drags' steps; the pictures go to the test
+output."""
 import pathlib
 import shutil
 import time
@@ -84,6 +86,44 @@ def test_a_recorded_keyboard_and_mouse_drive_the_kiosk(tmp_path):
         assert marks[:2] == [("C", "add view front width=480 height=320 eye=0,1,3 target=0,1,0"),
                              ("C", "load human as rec")]
         assert [k for k, _ in marks[2:]] == ["B", "E"]
+    finally:
+        d.stop()
+        d.cleanup()
+
+
+def test_a_hid_mouse_replayed_through_hidapi_drags_in_the_kiosk(tmp_path):
+    """the same through the hidraw backend: a HID mouse (the hid-tools recording's
+    descriptor, name and ids) under umockdev replays reports written here, 4 bytes each as
+    its descriptor lays them out (buttons, x, y, wheel): the left button down, 12 steps of
+    8 counts right, up"""
+    import sys
+    sys.path.insert(0, str(ROOT / "tests" / "input" / "hid"))
+    import hidmock
+    desc, name, ids, _ = hidmock.read_recording(ROOT / "tests" / "input" / "hid" / "hidtools_mouse.hid")
+    reports = [bytes([1, 0, 0, 0])] + [bytes([1, 8, 0, 0])] * 12 + [bytes([0, 0, 0, 0])]
+    paths = hidmock.write_mock(tmp_path, desc, name, ids, reports, first_ms=3000, pace_ms=40)
+    d = Daemon(extra=("--input", "hidraw:%04x:%04x" % (ids[1], ids[2])))
+    d.argv = [UMOCKDEV_RUN] + hidmock.umockdev_args(paths) + ["--"] + d.argv
+    d.start()
+    try:
+        with d.client() as c:
+            c.request("add view front width=480 height=320 eye=0,1,3 target=0,1,0")
+            c.request("load human as hid")
+            assert [x["backend"] for x in c.request("list devices")["devices"]] == ["hidraw"]
+            c.request("manipulate figure hid")
+            start = c.request("get manip")["position"]
+            deadline = time.monotonic() + 20
+            while time.monotonic() < deadline and not c.request("get kiosk")["step"]:
+                time.sleep(0.02)
+            while time.monotonic() < deadline and c.request("get kiosk")["step"]:
+                time.sleep(0.02)
+            moved = c.request("get manip")["position"]
+            write_picture(c, "front", "kiosk_recorded_hid.png")
+        assert moved[0] - start[0] > 0.02, (start, moved)
+        assert moved[1:] == pytest.approx(start[1:], abs=1e-9)
+        kinds = [r.split(" ", 2)[1] for r in
+                 (pathlib.Path(d.state_dir) / "journal").read_text().splitlines()]
+        assert [k for k in kinds if k in "BE"] == ["B", "E"]
     finally:
         d.stop()
         d.cleanup()

@@ -17,6 +17,7 @@ import os
 import pathlib
 import shutil
 import subprocess
+import sys
 
 import pytest
 
@@ -25,101 +26,21 @@ BUILD = ROOT / os.environ.get("POSTURE_BUILD", "build/rel")
 TOOL = BUILD / "bin" / "posture-input"
 RECORDING = ROOT / "tests" / "input" / "hid" / "hidtools_mouse.hid"
 UMOCKDEV_RUN = shutil.which("umockdev-run")
-NODE = "/dev/hidraw0"
-HID_MAX_DESCRIPTOR_SIZE = 4096
+sys.path.insert(0, str(ROOT / "tests" / "input" / "hid"))
+import hidmock  # noqa: E402
+NODE = hidmock.NODE
 
 pytestmark = pytest.mark.skipif(
     UMOCKDEV_RUN is None, reason="umockdev-run is not installed (Debian package umockdev)")
-
-
-def read_recording(path):
-    """(descriptor bytes, name, (bus, vid, pid), [report bytes]) of a one-device recording"""
-    desc, name, ids, reports = None, None, None, []
-    for line in path.read_text().splitlines():
-        tag, _, rest = line.partition(": ")
-        if tag == "R":
-            n, *hexes = rest.split()
-            desc = bytes(int(h, 16) for h in hexes)
-            assert len(desc) == int(n)
-        elif tag == "N":
-            name = rest
-        elif tag == "I":
-            ids = tuple(int(x, 16) for x in rest.split())
-        elif tag == "E":
-            _, n, *hexes = rest.split()
-            reports.append(bytes(int(h, 16) for h in hexes))
-            assert len(reports[-1]) == int(n)
-    return desc, name, ids, reports
-
-
-def script_bytes(data):
-    """umockdev's script escaping: bytes below 32 as ^ and b + 64, '^' as ^`"""
-    out = bytearray()
-    for b in data:
-        if b < 32:
-            out += bytes([ord("^"), b + 64])
-        elif b == ord("^"):
-            out += b"^`"
-        else:
-            out.append(b)
-    return bytes(out)
 
 
 @pytest.fixture(scope="module")
 def mock(tmp_path_factory):
     """the .umockdev, .ioctl and .script files of the recorded mouse"""
     d = tmp_path_factory.mktemp("hidmouse")
-    desc, name, (bus, vid, pid), reports = read_recording(RECORDING)
-    usb = "/devices/pci0000:00/0000:00:01.2/usb1/1-1"
-    intf = usb + "/1-1:1.0"
-    hid = intf + "/%04X:%04X:%04X.0001" % (bus, vid, pid)
-    (d / "hidmouse.umockdev").write_text("\n".join([
-        "P: " + hid + "/hidraw/hidraw0",
-        "N: hidraw0",
-        "E: DEVNAME=" + NODE,
-        "E: MAJOR=240",
-        "E: MINOR=0",
-        "E: SUBSYSTEM=hidraw",
-        "A: dev=240:0\\n",
-        "L: device=../../../%04X:%04X:%04X.0001" % (bus, vid, pid),
-        "",
-        "P: " + hid,
-        "E: DRIVER=hid-generic",
-        "E: HID_ID=%04X:%08X:%08X" % (bus, vid, pid),
-        "E: HID_NAME=" + name,
-        "E: HID_PHYS=usb-0000:00:01.2-1/input0",
-        "E: HID_UNIQ=",
-        "E: MODALIAS=hid:b%04Xg0001v%08Xp%08X" % (bus, vid, pid),
-        "E: SUBSYSTEM=hid",
-        "H: report_descriptor=" + desc.hex().upper(),
-        "",
-        "P: " + intf,
-        "E: DEVTYPE=usb_interface",
-        "E: DRIVER=usbhid",
-        "E: SUBSYSTEM=usb",
-        "A: bInterfaceNumber=00\\n",
-        "A: bInterfaceClass=03\\n",
-        "",
-        "P: " + usb,
-        "E: DEVTYPE=usb_device",
-        "E: DRIVER=usb",
-        "E: SUBSYSTEM=usb",
-        "A: idVendor=%04x\\n" % vid,
-        "A: idProduct=%04x\\n" % pid,
-        "A: manufacturer=QEMU\\n",
-        "A: product=QEMU USB Mouse\\n",
-        "A: bcdDevice=0000\\n",
-        "",
-    ]))
-    # hid_open_path asks the node for its descriptor: struct hidraw_report_descriptor
-    size = len(desc).to_bytes(4, "little")
-    full = size + desc + bytes(HID_MAX_DESCRIPTOR_SIZE - len(desc))
-    (d / "hidmouse.ioctl").write_text("@DEV %s\nHIDIOCGRDESCSIZE 0 %s\nHIDIOCGRDESC 0 %s\n" % (
-        NODE, size.hex().upper(), full.hex().upper()))
-    with open(d / "hidmouse.script", "wb") as f:
-        for r in reports:
-            f.write(b"r 150 " + script_bytes(r) + b"\n")
-    return d, desc, name, (bus, vid, pid), reports
+    desc, name, ids, reports = hidmock.read_recording(RECORDING)
+    hidmock.write_mock(d, desc, name, ids, reports)
+    return d, desc, name, ids, reports
 
 
 def mocked(mock, *args, timeout=60):
