@@ -201,8 +201,12 @@ edit_line(struct daemon *d, int width, char *dest, size_t len)
 		return -1;
 	/* a prompt shows the line so far and its question before what is typed */
 	char ask[VIEW_TEXT_LEN];
-	if (asking)
-		snprintf(ask, sizeof ask, "%.60s  %.60s ", prompt_line(d->prompt), asking->question);
+	if (asking) { /* a long line shows its end: the words just given */
+		const char *line = prompt_line(d->prompt);
+		size_t l = strlen(line);
+		snprintf(ask, sizeof ask, "%s%.60s  %.60s ", l > 60 ? "..." : "", l > 60 ? line + l - 57 : line,
+			 asking->question);
+	}
 	const char *prompt = asking ? ask : value ? "value: " : "> ";
 	int plen = (int)strlen(prompt);
 	int cols = (width - 12) / VIEW_CHAR_PX - plen;
@@ -210,15 +214,23 @@ edit_line(struct daemon *d, int width, char *dest, size_t len)
 		cols = (int)len - plen - 1;
 	struct editline_window w;
 	kiosk_visible(d->kiosk, cols, &w);
-	/* cols counts characters; a window of many-byte ones is cut to what dest holds */
-	size_t n = strlen(prompt), t = w.len;
+	size_t n = strlen(prompt);
 	if (n >= len)
 		n = len - 1;
-	if (n + t >= len)
-		t = len - 1 - n;
 	memcpy(dest, prompt, n);
-	memcpy(dest + n, w.text, t);
-	dest[n + t] = '\0';
+	/*
+	 * The font has ASCII's glyphs: any other character is one '?', so that
+	 * a column is a character and the caret stays under its own (the
+	 * window counts characters, not bytes).
+	 */
+	for (size_t i = 0; i < w.len && n + 1 < len; i++) {
+		unsigned char ch = (unsigned char)w.text[i];
+		if (ch < 0x80)
+			dest[n++] = (char)ch;
+		else if ((ch & 0xc0) != 0x80) /* a lead byte: the character's one column */
+			dest[n++] = '?';
+	}
+	dest[n] = '\0';
 	return plen + w.cursor_col;
 }
 

@@ -499,7 +499,7 @@ view_add_status(struct drawlist *dl, const char *status, const char *message, in
 		memset(under, ' ', (size_t)caret);
 		under[caret] = '_';
 		under[caret + 1] = '\0';
-		view_add_text(dl, 6, h - VIEW_LINE_PX + base + 2, under, c_status, VIEW_ALIGN_LEFT);
+		view_add_text(dl, 6, h - VIEW_LINE_PX + base, under, c_status, VIEW_ALIGN_LEFT);
 	}
 	if (message)
 		view_add_text(dl, 6, h - 2 * VIEW_LINE_PX + base, message, c_msg, VIEW_ALIGN_LEFT);

@@ -101,3 +101,18 @@ def test_a_value_typed_during_a_drag_moves_g_exactly(daemon):
         c.request("undo")  # the drag with its typed value was one step
         root = c.request("show figure bob")["root"]
         assert c.request(f"get site bob {root}")["position"] == pytest.approx(g0, abs=1e-12)
+
+
+def test_the_configured_layout_types_its_own_characters(daemon):
+    """`set kiosk keymap=de`: the German keyboard's keys (xkb-data symbols/de: Y and Z
+    swapped, AD11 ü); the edit line holds UTF-8, drawn a '?' a character (the font is ASCII)"""
+    with daemon.client() as c:
+        c.request("add view front width=320 height=240 eye=0,1,3 target=0,1,0")
+        assert c.request("set kiosk keymap=de")["keymap"] == "de"
+        press(c, "KEY_LEFTBRACE")
+        press(c, "KEY_Y")
+        k = c.request("get kiosk")
+        assert k["line"] == "\u00fcz" and k["cursor"] == 3  # bytes: ü is two
+        write_picture(c, "front", "kiosk_de.png")
+        press(c, "KEY_ESC")
+        assert c.request("set kiosk keymap=us")["keymap"] == "us"
