@@ -17,7 +17,10 @@
  * and a backtracking line search that only accepts decrease, so every
  * iteration is at least as good as the last (§4.7.2). It stops at
  * convergence, at an iteration limit or at a deadline read from a clock the
- * caller passes in, and the posture it leaves is the best one found.
+ * caller passes in, and the posture it leaves is the best one found. The
+ * result records where the deadline cut it (struct ik_work), and a solve
+ * given that record as opt->replay stops at the same place without a
+ * clock, so a recorded session replays bit for bit (ik_work.h).
  *
  * Everything is allocated by ik_make for a figure and a constraint
  * capacity; setting goals, enabling constraints and solving allocate
