@@ -24,6 +24,8 @@
 #include "pose/ik.h"
 #include "pose/ik_work.h"
 
+#include "alloc_count.h"
+
 #define FRAMES 300
 
 /* ---- clocks ----------------------------------------------------------------- */
@@ -181,6 +183,12 @@ test_arm_replays_bit_for_bit(void **unused)
 	struct jumpy_clock jc = { 1000, 0 };
 	struct ik_clock clock = { jumpy_now, &jc };
 	struct cut_tally t = { 0 };
+#if COUNT_ALLOCS
+	long before_frames = allocs;
+	state_free(state_make(m)); /* the hook sees allocations */
+	assert_true(allocs > before_frames);
+	before_frames = allocs;
+#endif
 	for (int f = 0; f < FRAMES; f++) {
 		drag_goal(ik, f);
 		jumpy_frame(&jc);
@@ -194,6 +202,9 @@ test_arm_replays_bit_for_bit(void **unused)
 		assert_same_solve(&lr, &rr, f);
 		assert_same_posture(m, s, replayed, f);
 	}
+#if COUNT_ALLOCS
+	assert_int_equal(allocs - before_frames, 0); /* neither solve, nor the record's text */
+#endif
 	print_message("arm: %d frames cut (%d after a restart), %d ended on their own\n", t.cut,
 		      t.after_restart, t.ended);
 	assert_true(t.cut > FRAMES / 4 && t.ended > FRAMES / 10 && t.after_restart > 0);
