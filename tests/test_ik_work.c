@@ -355,8 +355,9 @@ test_behaving_human_replays_bit_for_bit(void **unused)
 		assert_int_equal(live.b.root, replay.b.root);
 	}
 	print_message("behaving: %d frames cut (body %d, hand %d, %d in a later balance round), "
-		      "%d ended on their own, %d steps\n", t.cut, t.group[0], t.group[1], t.late_round,
-		      t.ended, live.b.steps_taken);
+		      "%d ended on their own, %d steps, posture hash %016llx\n", t.cut, t.group[0],
+		      t.group[1], t.late_round, t.ended, live.b.steps_taken,
+		      (unsigned long long)state_hash(live.m, live.s));
 	assert_true(t.cut > FRAMES / 4 && t.ended > FRAMES / 20);
 	assert_true(t.group[0] > 0 && t.group[1] > 0 && t.late_round > 0);
 	assert_true(live.b.steps_taken > 0);
