@@ -128,6 +128,9 @@ int behave_attach(struct behave *b, const struct model *m, struct state *s, stru
 /*
  * One frame: passive and active behaviours update the constraints, then
  * the ik solves (with opt and clock) and the balance is measured again.
+ * The solve is the frame's only use of the clock, so the result's work,
+ * given back as opt->replay to a behaviour in the same state, replays the
+ * frame exactly (ik_work.h).
  */
 struct ik_result behave_frame(struct behave *b, const struct model *m, struct state *s,
 			      struct ik *ik, const struct ik_options *opt,

@@ -401,6 +401,20 @@ struct group_run {
 	uint32_t rng;
 };
 
+/*
+ * The one place a solve looks at time, before each iteration: live, the
+ * clock against the deadline; in replay, the recorded count of iterations
+ * at the cut (ik_work.h), with no clock read.
+ */
+static int
+out_of_time(const struct group_run *run)
+{
+	const struct ik_work *replay = run->opt->replay;
+	if (replay)
+		return replay->cut && run->res->iterations == replay->iterations;
+	return run->deadline && clock_now(run->clock) >= run->deadline;
+}
+
 static void
 trace(struct group_run *run, double f)
 {
@@ -450,7 +464,7 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 			run->res->status = IK_ITER_LIMIT;
 			break;
 		}
-		if (run->deadline && clock_now(run->clock) >= run->deadline) {
+		if (out_of_time(run)) {
 			timed_out = 1;
 			break;
 		}
@@ -460,6 +474,7 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 		double f_8ago = since_start >= 8 ? recent[since_start % 8] : INFINITY;
 		recent[since_start % 8] = f;
 		since_start++;
+		run->res->work.start_iterations = since_start;
 		if (restarts_left > 0 && since_start > opt->restart_after && f > 0.5 * f_8ago)
 			goto stationary;
 		/* a goal out of reach: the energy has settled near its floor, and
@@ -559,6 +574,8 @@ minimise(struct ik *ik, const struct model *m, struct state *s, struct group_run
 		if (restarts_left-- <= 0)
 			break;
 		run->res->restarts++;
+		run->res->work.start++;
+		run->res->work.start_iterations = 0;
 		since_start = 0;
 		fresh = 1;
 		for (int i = 0; i < n; i++)
@@ -609,6 +626,16 @@ attach_com(struct ik *ik, const struct state *s)
 	}
 }
 
+/* the work's place moves to a group's first start */
+static void
+work_begin_group(struct ik_work *w, int round, int group)
+{
+	w->round = round;
+	w->group = group;
+	w->start = 0;
+	w->start_iterations = 0;
+}
+
 struct ik_result
 ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_options *opt,
 	 const struct ik_clock *clock)
@@ -617,7 +644,8 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 	struct group_run run = { opt, clock, 0, &res, opt->seed };
 	ik->rebuilt = 0;
 	res.status = IK_CONVERGED;
-	if (opt->budget_us && clock)
+	res.work = ik_work_none();
+	if (opt->budget_us && clock && !opt->replay)
 		run.deadline = clock_now(clock) + opt->budget_us;
 	int max_group = 0, has_com = 0;
 	for (int ci = 0; ci < ik->e.n; ci++) {
@@ -642,6 +670,7 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 			if (ik_prepare(ik, m, s, gidx) == 0)
 				continue;
 			double f0, f1;
+			work_begin_group(&res.work, r, gidx);
 			timed_out = minimise(ik, m, s, &run, &f0, &f1);
 			if (first)
 				res.f_start += f0;
@@ -655,6 +684,7 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 		kin_com(m, s);
 		if (timed_out) {
 			res.status = IK_TIME_LIMIT;
+			res.work.cut = 1;
 			break;
 		}
 		double moved = 0;
@@ -665,6 +695,7 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 			break;
 	}
 	res.chains_rebuilt = ik->rebuilt;
+	res.work.iterations = res.iterations;
 	/* met: every enabled constraint within tolerance of this solve's goals */
 	attach_com(ik, s);
 	res.met = 1;

@@ -17,7 +17,10 @@
  * and a backtracking line search that only accepts decrease, so every
  * iteration is at least as good as the last (§4.7.2). It stops at
  * convergence, at an iteration limit or at a deadline read from a clock the
- * caller passes in, and the posture it leaves is the best one found.
+ * caller passes in, and the posture it leaves is the best one found. The
+ * result records where the deadline cut it (struct ik_work), and a solve
+ * given that record as opt->replay stops at the same place without a
+ * clock, so a recorded session replays bit for bit (ik_work.h).
  *
  * Everything is allocated by ik_make for a figure and a constraint
  * capacity; setting goals, enabling constraints and solving allocate
@@ -31,6 +34,7 @@
 #include "figure/model.h"
 #include "figure/state.h"
 #include "pose/ik_constraint.h"
+#include "pose/ik_work.h"
 
 /* why a solve stopped */
 enum ik_status {
@@ -66,6 +70,10 @@ struct ik_options {
 	uint32_t seed;      /* for restarts */
 	double *trace;      /* optional: the energy after every iteration, for tests */
 	int trace_cap;
+	/* replay (ik_work.h): non-NULL, the solve is cut where this record of a
+	 * live solve was cut, and the clock and budget_us are not looked at; a
+	 * record of a solve that ended on its own is never cut */
+	const struct ik_work *replay;
 };
 
 struct ik_options ik_default_options(void);
@@ -82,6 +90,7 @@ struct ik_result {
 	int active_limits;  /* variables resting on a joint limit at the end */
 	int trace_len;      /* entries written to opt->trace */
 	int chains_rebuilt; /* groups whose variables had to be worked out again */
+	struct ik_work work; /* what decides where the solve stopped, for recording */
 };
 
 struct ik;
@@ -119,8 +128,11 @@ int ik_set_spring(struct ik *ik, const struct model *m, int dof, int side, doubl
  * Solves the enabled constraints from the state's posture (warm start).
  * s must have current global frames and centre of mass (kin_update), and
  * is left so, at the best posture found. clock may be NULL when
- * opt->budget_us is 0. f_start and f_end are the energies of the groups at
- * the start of the first and the end of the last balance round.
+ * opt->budget_us is 0 or opt->replay is set. f_start and f_end are the
+ * energies of the groups at the start of the first and the end of the last
+ * balance round. The result's work, given back as opt->replay with the same
+ * starting state, constraints and options, makes the same solve without a
+ * clock: the same posture, bit for bit, and the same work.
  */
 struct ik_result ik_solve(struct ik *ik, const struct model *m, struct state *s,
 			  const struct ik_options *opt, const struct ik_clock *clock);
