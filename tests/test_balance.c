@@ -6,6 +6,7 @@
 #include <cmocka.h>
 
 #include "test_util.h"
+#include "test_human.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -81,21 +82,12 @@ test_parameters_past_a_foot(void **unused)
 	assert_near(p[1], out[1], 1e-12);
 }
 
-static struct model *
-human(void)
-{
-	char err[200];
-	struct human_def d = human_default_def(HUMAN_MALE);
-	struct model *m = human_build(&d, err, sizeof err);
-	assert_non_null(m);
-	return m;
-}
 
 static void
 test_standing_human_is_balanced_between_its_feet(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	struct balance b;
@@ -120,7 +112,7 @@ static void
 test_leaning_moves_the_parameters_the_right_way(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	struct balance b0, b;

@@ -6,6 +6,7 @@
 #include <cmocka.h>
 
 #include "test_util.h"
+#include "test_human.h"
 
 #include <nlopt.h>
 #include <stdio.h>
@@ -277,23 +278,7 @@ test_frame_direction_and_aim_on_a_ball_joint(void **unused)
 
 /* ---- the human ---------------------------------------------------------- */
 
-static struct model *
-human(void)
-{
-	char err[256];
-	struct human_def d = human_default_def(HUMAN_MALE);
-	struct model *m = human_build(&d, err, sizeof err);
-	assert_non_null(m);
-	return m;
-}
 
-static int
-site(const struct model *m, const char *name)
-{
-	int k = model_find_site(m, name);
-	assert_true(k >= 0);
-	return k;
-}
 
 static int
 joint(const struct model *m, const char *name)
@@ -320,16 +305,16 @@ static void
 test_gradients_match_finite_differences_on_the_human(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	struct ik *ik = ik_make(m, 16);
 	random_posture(m, s, 3, 0.6);
-	kin_set_root(m, s, site(m, "foot_l.balance"));
+	kin_set_root(m, s, test_site(m, "foot_l.balance"));
 	struct ik_constraint_def c = ik_constraint_default_def();
 	double axis[3] = { 0.48, 0.6, 0.64 };
 	/* position objectives with a fixed goal */
-	c.effector_site = site(m, "hand_r.palm");
+	c.effector_site = test_site(m, "hand_r.palm");
 	c.goal_xf.p[0] = -0.4;
 	c.goal_xf.p[1] = 1.2;
 	c.goal_xf.p[2] = 0.3;
@@ -351,12 +336,12 @@ test_gradients_match_finite_differences_on_the_human(void **unused)
 		assert_true(ik_add(ik, m, &c) >= 0);
 	}
 	/* the same objectives with a live goal on the figure: hand to the left knee */
-	c.goal_site = site(m, "shank_l.knee");
+	c.goal_site = test_site(m, "shank_l.knee");
 	xform_identity(&c.goal_xf);
 	c.goal_xf.p[2] = 0.1;
 	mathx_quat_to_mat(q, c.goal_xf.r);
 	for (int i = 0; i < 3; i++) {
-		c.effector_site = site(m, i == 2 ? "head.between_eyes" : "hand_l.palm");
+		c.effector_site = test_site(m, i == 2 ? "head.between_eyes" : "hand_l.palm");
 		c.pos = pos[i];
 		c.ori = ori[(i + 1) % 3];
 		c.pos_weight = 0.6;
@@ -364,7 +349,7 @@ test_gradients_match_finite_differences_on_the_human(void **unused)
 	}
 	/* the centre of mass on a vertical line, and limit springs on both knees */
 	c = ik_constraint_default_def();
-	c.effector_site = site(m, HUMAN_SITE_LOWER_TORSO);
+	c.effector_site = test_site(m, HUMAN_SITE_LOWER_TORSO);
 	c.com_effector = 1;
 	c.pos = IK_LINE;
 	c.goal_xf.p[2] = 0.05;
@@ -417,12 +402,12 @@ static void
 test_limits_hold_for_reachable_and_unreachable_goals(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	struct ik *ik = ik_make(m, 2);
 	struct ik_constraint_def c = ik_constraint_default_def();
-	c.effector_site = site(m, "hand_r.palm");
+	c.effector_site = test_site(m, "hand_r.palm");
 	c.ori = IK_FRAME;
 	c.pos_weight = 0.5;
 	c.start_joint = joint(m, "clavicle_r");
@@ -481,7 +466,7 @@ static void
 test_overconstrained_minimum_matches_nlopt(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	srand(11);
@@ -490,7 +475,7 @@ test_overconstrained_minimum_matches_nlopt(void **unused)
 		state_reset(m, s);
 		kin_update(m, s);
 		random_posture(m, s, 100 + trial, 0.3);
-		int palm = site(m, "hand_r.palm"), tip = site(m, "hand_r.fingertip");
+		int palm = test_site(m, "hand_r.palm"), tip = test_site(m, "hand_r.fingertip");
 		struct ik_constraint_def c = ik_constraint_default_def();
 		c.start_joint = joint(m, "clavicle_r");
 		c.effector_site = palm;
@@ -603,7 +588,7 @@ static void
 test_energy_never_increases(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	double trace[512];
@@ -630,7 +615,7 @@ static void
 test_time_limit_cuts_after_one_iteration_and_replays_identically(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m), *s2 = state_make(m);
 	kin_update(m, s);
 	kin_update(m, s2);
@@ -662,11 +647,11 @@ static void
 test_step_factor_walks_the_effector_to_the_goal(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	struct ik *ik = ik_make(m, 1);
-	int palm = site(m, "hand_r.palm");
+	int palm = test_site(m, "hand_r.palm");
 	struct ik_constraint_def c = ik_constraint_default_def();
 	c.effector_site = palm;
 	c.start_joint = joint(m, "clavicle_r");
@@ -709,7 +694,7 @@ static void
 test_balance_with_feet_held_and_the_hand_moved(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	struct ik *ik = ik_make(m, 8);
@@ -717,7 +702,7 @@ test_balance_with_feet_held_and_the_hand_moved(void **unused)
 	assert_int_equal(stance_standing(ik, m, s, &st), 0);
 	int hand = stance_hand(ik, m, s, &st, 1);
 	assert_true(hand >= 0);
-	int bal_r = site(m, "foot_r.balance");
+	int bal_r = test_site(m, "foot_r.balance");
 	double foot_before[3];
 	memcpy(foot_before, s->site_xf[bal_r].p, sizeof foot_before);
 	/* the hand, solved after the body: 35 cm forward and 20 cm up */
@@ -760,11 +745,11 @@ static void
 test_limit_spring_keeps_the_elbow_off_full_extension(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	struct ik *ik = ik_make(m, 1);
-	int palm = site(m, "hand_r.palm"), elbow = m->jnt_dof0[joint(m, "elbow_r")];
+	int palm = test_site(m, "hand_r.palm"), elbow = m->jnt_dof0[joint(m, "elbow_r")];
 	struct ik_constraint_def c = ik_constraint_default_def();
 	c.effector_site = palm;
 	c.start_joint = joint(m, "clavicle_r");
@@ -797,7 +782,7 @@ static void
 test_solving_allocates_nothing(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	struct ik *ik = arm_problem(m, 0);
@@ -832,7 +817,7 @@ static void
 test_bad_definitions_are_rejected(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct ik *ik = ik_make(m, 1);
 	struct ik_constraint_def c = ik_constraint_default_def();
 	assert_int_equal(ik_add(ik, m, &c), -1); /* no effector */

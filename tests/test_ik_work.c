@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "test_util.h"
+#include "test_human.h"
 #include "test_random.h"
 
 #include <limits.h>
@@ -118,15 +119,6 @@ tally(struct cut_tally *t, const struct ik_work *w)
 
 /* ---- the right arm ------------------------------------------------------------ */
 
-static struct model *
-human(void)
-{
-	char err[256];
-	struct human_def d = human_default_def(HUMAN_MALE);
-	struct model *m = human_build(&d, err, sizeof err);
-	assert_non_null(m);
-	return m;
-}
 
 /* the palm's position and orientation, the chain from the right clavicle */
 static struct ik *
@@ -171,7 +163,7 @@ test_arm_replays_bit_for_bit(void **unused)
 {
 	(void)unused;
 	rng_state = 15;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m), *before = state_make(m), *replayed = state_make(m);
 	kin_update(m, s);
 	struct ik *ik = arm_problem(m);
@@ -239,7 +231,7 @@ test_a_record_one_count_off_replays_to_another_posture(void **unused)
 {
 	(void)unused;
 	rng_state = 16;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m), *before = state_make(m), *replayed = state_make(m);
 	kin_update(m, s);
 	struct ik *ik = arm_problem(m);
@@ -402,7 +394,7 @@ static void
 test_a_solve_without_variables_records_no_group(void **unused)
 {
 	(void)unused;
-	struct model *m = human();
+	struct model *m = test_human();
 	struct state *s = state_make(m);
 	kin_update(m, s);
 	struct ik *ik = ik_make(m, 1);
