@@ -30,6 +30,20 @@ daemon_checkpoints_push(struct checkpoints *c, char *text, size_t len)
 }
 
 int
+daemon_kiosk_view(const struct daemon *d)
+{
+	const struct interact *ia = d->interact;
+	if (ia && ia->mode != INTERACT_NONE && ia->view >= 0)
+		return ia->view;
+	if (d->pointer_view >= 0 && d->env.view[d->pointer_view].used)
+		return d->pointer_view;
+	for (int v = 0; v < ENV_MAX_VIEWS; v++)
+		if (d->env.view[v].used)
+			return v;
+	return -1;
+}
+
+int
 daemon_replace_env(struct daemon *d, const char *text, size_t len, char *err, size_t errlen)
 {
 	struct env *fresh = malloc(sizeof *fresh);

@@ -163,6 +163,13 @@ void daemon_checkpoints_clear(struct checkpoints *c);
 void daemon_checkpoints_push(struct checkpoints *c, char *text, size_t len);
 
 /*
+ * The view the kiosk works in: the mode's, else the one the pointer was
+ * last in, else the first there is; -1: no view. Change view turns it,
+ * the edit line shows in it.
+ */
+int daemon_kiosk_view(const struct daemon *d);
+
+/*
  * Replaces the environment with the session in text; nothing changes on
  * error (0, or -1 with err).
  */

@@ -69,19 +69,11 @@ journal_camera(struct modes *M, int v)
 	M->run_command(M->ctx, line);
 }
 
-/* the view change view works in: the mode's, else the one the pointer was last in, else the first */
+/* the view change view works in: the kiosk's (the mode's, else the pointer's, else the first) */
 static int
 current_view(const struct modes *M)
 {
-	const struct env *e = &M->d->env;
-	if (M->interact.mode != INTERACT_NONE && M->interact.view >= 0)
-		return M->interact.view;
-	if (M->pointer_view >= 0 && e->view[M->pointer_view].used)
-		return M->pointer_view;
-	for (int v = 0; v < ENV_MAX_VIEWS; v++)
-		if (e->view[v].used)
-			return v;
-	return -1;
+	return daemon_kiosk_view(M->d);
 }
 
 /* the pointer outside a mode: where S picks */

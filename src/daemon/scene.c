@@ -168,20 +168,6 @@ add_hover(struct scene *sc, struct daemon *d)
 				view_line(sc->dl, c[k], c[k | b], yellow);
 }
 
-/* the view the kiosk's edit line shows in: the mode's, else the pointer's, else the first */
-static int
-kiosk_view(const struct daemon *d)
-{
-	const struct interact *ia = d->interact;
-	if (ia && ia->mode != INTERACT_NONE && ia->view >= 0)
-		return ia->view;
-	if (d->pointer_view >= 0 && d->env.view[d->pointer_view].used)
-		return d->pointer_view;
-	for (int v = 0; v < ENV_MAX_VIEWS; v++)
-		if (d->env.view[v].used)
-			return v;
-	return -1;
-}
 
 /*
  * The kiosk's edit line in place of the status while something is typed:
@@ -255,7 +241,7 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 	const struct interact *ia = d->interact;
 	int manipulating = ia && ia->mode != INTERACT_NONE && ia->view == v;
 	char status[VIEW_TEXT_LEN];
-	int caret = v == kiosk_view(d) ? edit_line(d, width, status, sizeof status) : -1;
+	int caret = v == daemon_kiosk_view(d) ? edit_line(d, width, status, sizeof status) : -1;
 	if (caret < 0)
 		snprintf(status, sizeof status,
 			 "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
@@ -465,7 +451,7 @@ screen_put(struct scene *sc, const struct tile *t, const struct frame *f)
 static int
 screen_band(struct scene *sc, struct daemon *d)
 {
-	int v = kiosk_view(d);
+	int v = daemon_kiosk_view(d);
 	if (v < 0)
 		return -1;
 	struct camera cam;

@@ -29,12 +29,6 @@
 
 #define CHECKS 50
 
-static int
-cmp(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
-}
 
 /* the human's parts around the palm, left out as the daemon leaves them out */
 static unsigned char own[1024];
@@ -73,7 +67,7 @@ median_ms(struct render *r, struct drawlist *dl, struct hemi_map *map,
 		*result = check(r, dl, map, sc, base, o, eye, which);
 		t[i] = (bench_now_us() - t0) / 1000;
 	}
-	qsort(t, CHECKS, sizeof t[0], cmp);
+	qsort(t, CHECKS, sizeof t[0], bench_cmp_double);
 	if (p95)
 		*p95 = t[CHECKS * 95 / 100];
 	return t[CHECKS / 2];
@@ -130,7 +124,7 @@ main(int argc, char **argv)
 		obstruct_check(map, dist, OBSTRUCT_CONE, dir);
 		t[i] = (bench_now_us() - t0) / 1000;
 	}
-	qsort(t, CHECKS, sizeof t[0], cmp);
+	qsort(t, CHECKS, sizeof t[0], bench_cmp_double);
 	double worst = median_ms(r, dl, map, &sc, base, o, behind, 6, NULL, &res_behind);
 	printf("BENCH interact.hemicube ms=%.3f p95_ms=%.3f all_ms=%.3f search_ms=%.3f "
 	       "hidden_ms=%.3f n=%d result=%d all_result=%d hidden_result=%d\n",
