@@ -22,7 +22,7 @@ inject(struct cmd_ctx *c, struct input_event_rec *e)
 	if (!c->d->input)
 		return cmd_fail(c, "bad-argument", "this daemon takes no input");
 	e->device = INPUT_DEVICE_SOCKET;
-	e->t_us = c->d->now_us ? c->d->now_us() : 0;
+	e->t_us = c->d->now_us ? c->d->now_us(c->d) : 0;
 	int rc = input_queue_push(c->d->input, e);
 	if (rc < 0)
 		return cmd_fail(c, "limit", "the input queue is full");

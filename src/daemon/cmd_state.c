@@ -1,4 +1,5 @@
 /* cmd_state.c - files, undo and redo, settling, status and subscriptions */
+#include <inttypes.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -6,6 +7,7 @@
 
 #include "daemon/cmd_ctx.h"
 #include "draw/frame_writer.h"
+#include "daemon/posture_hash.h"
 #include "daemon/session.h"
 #include "daemon/statefile.h"
 
@@ -207,6 +209,9 @@ cmd_status(struct cmd_ctx *c)
 	const struct daemon_stats *s = &c->d->stats;
 	json_object_set_new(c->result, "version", json_string(POSTURED_VERSION));
 	json_object_set_new(c->result, "frame", json_integer((json_int_t)s->frame));
+	char hash[24];
+	snprintf(hash, sizeof hash, "%016" PRIx64, posture_env_hash(&c->d->env));
+	json_object_set_new(c->result, "posture", json_string(hash)); /* as a replay prints it */
 	json_object_set_new(c->result, "fps", json_real(s->fps));
 	json_object_set_new(c->result, "ik_us", json_real(s->ik_us));
 	json_object_set_new(c->result, "draw_us", json_real(s->draw_us));

@@ -116,7 +116,8 @@ struct daemon {
 	char message[256]; /* the message line under the pictures (§1.7) */
 	/* the queue from the devices and the socket's input lines to the loop; NULL: none */
 	struct input_queue *input;
-	uint64_t (*now_us)(void); /* the loop's clock for injected events; NULL: 0 */
+	/* the loop's clock, as the state sees it (a replay's is the recording's); NULL: 0 */
+	uint64_t (*now_us)(struct daemon *d);
 	/* the dial panel's map: its valuators' names; NULL: no panel */
 	const struct can_map *panel;
 	/* the devices read directly (list devices); NULL: none */
@@ -151,6 +152,10 @@ struct daemon {
 	void (*mode_moved)(struct daemon *d);
 	/* a step of the mode begins ('B') or ends ('E'), journaled; NULL: none */
 	void (*mode_step)(struct daemon *d, char end);
+	/* record start (dir) or stop (NULL): 0, or -1 with err; NULL: this daemon cannot */
+	int (*record)(struct daemon *d, const char *dir, char *err, size_t errlen);
+	/* the recording under way: its folder, frames, lines and the loop's waits; 0: none */
+	int (*recording)(struct daemon *d, const char **dir, uint64_t counts[3]);
 	double pointer_gain;
 	int screen_w, screen_h; /* the kiosk's screen: the framebuffer's, or --screen */
 	uint64_t held_max_us; /* a mouse button held this long ends its drag (set input held=) */

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "daemon/cmd.h"
+#include "daemon/posture_hash.h"
 #include "daemon/session.h"
 #include "daemon/statefile.h"
 
@@ -39,7 +40,6 @@ write_all(int fd, const char *p, size_t n)
 	return 0;
 }
 
-static uint64_t figure_hash(const struct env_figure *f);
 
 /* the current posture hashes, so only later solver changes are recorded */
 static void
@@ -48,7 +48,7 @@ note_postures(struct journal *j, const struct daemon *d)
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
 		const struct env_figure *f = &d->env.fig[i];
 		j->posture_gen[i] = f->gen;
-		j->posture_hash[i] = f->gen ? figure_hash(f) : 0;
+		j->posture_hash[i] = f->gen ? posture_figure_hash(f) : 0;
 	}
 }
 
@@ -65,9 +65,18 @@ write_checkpoints(FILE *f, const char *name, const struct checkpoints *c)
 }
 
 int
+journal_state_write(const struct daemon *d, FILE *f)
+{
+	session_write(&d->env, f);
+	write_checkpoints(f, "undo", &d->undo);
+	write_checkpoints(f, "redo", &d->redo);
+	return ferror(f) ? -1 : 0;
+}
+
+int
 journal_snapshot(struct journal *j, const struct daemon *d, int force)
 {
-	if ((!force && j->since_snap < JOURNAL_SNAPSHOT_RECORDS) || d->step.open)
+	if (j->fd < 0 || (!force && j->since_snap < JOURNAL_SNAPSHOT_RECORDS) || d->step.open)
 		return 0;
 	char *buf = NULL;
 	size_t len = 0;
@@ -75,10 +84,7 @@ journal_snapshot(struct journal *j, const struct daemon *d, int force)
 	if (!f)
 		return -1;
 	fprintf(f, "snapshot 1 %" PRIu64 "\n", j->seq);
-	session_write(&d->env, f);
-	write_checkpoints(f, "undo", &d->undo);
-	write_checkpoints(f, "redo", &d->redo);
-	int bad = ferror(f);
+	int bad = journal_state_write(d, f);
 	fclose(f);
 	if (bad || statefile_write(j->snap_path, buf, len) < 0) {
 		free(buf);
@@ -123,6 +129,28 @@ read_checkpoints(const char *p, const char *end, const char *name, struct checkp
 	return p;
 }
 
+int
+journal_state_read(struct daemon *d, const char *body, size_t len, char *err, size_t errlen)
+{
+	const char *end = body + len;
+	/* the session runs to its "end" line; the checkpoints follow */
+	const char *stop = NULL;
+	for (const char *q = body; !stop && q + 5 <= end; q++)
+		if (!memcmp(q, "\nend\n", 5))
+			stop = q;
+	if (!stop)
+		return say(err, errlen, "the session has no end");
+	stop += 5;
+	char msg[300];
+	if (session_read(body, (size_t)(stop - body), d->state_dir, d->library_dir, &d->env, msg,
+			 sizeof msg) < 0)
+		return say(err, errlen, "%s", msg);
+	const char *p = read_checkpoints(stop, end, "undo", &d->undo);
+	if (!p || !read_checkpoints(p, end, "redo", &d->redo))
+		return say(err, errlen, "bad undo history");
+	return 0;
+}
+
 static int
 load_snapshot(struct journal *j, struct daemon *d, uint64_t *snap_seq, char *err, size_t errlen)
 {
@@ -131,32 +159,15 @@ load_snapshot(struct journal *j, struct daemon *d, uint64_t *snap_seq, char *err
 	*snap_seq = 0;
 	if (!text)
 		return errno == ENOENT ? 0 : say(err, errlen, "%s: %s", j->snap_path, strerror(errno));
-	const char *end = text + len, *body = memchr(text, '\n', len);
-	if (!body || sscanf(text, "snapshot 1 %" SCNu64, snap_seq) != 1) {
-		free(text);
-		return say(err, errlen, "%s: not a snapshot", j->snap_path);
-	}
-	body++;
-	/* the session runs to its "end" line; the checkpoints follow */
-	const char *stop = strstr(body, "\nend\n");
-	if (!stop) {
-		free(text);
-		return say(err, errlen, "%s: the session has no end", j->snap_path);
-	}
-	stop += 5;
-	char msg[300];
-	if (session_read(body, (size_t)(stop - body), d->state_dir, d->library_dir, &d->env, msg,
-			 sizeof msg) < 0) {
-		free(text);
-		return say(err, errlen, "%s: %s", j->snap_path, msg);
-	}
-	const char *p = read_checkpoints(stop, end, "undo", &d->undo);
-	if (!p || !read_checkpoints(p, end, "redo", &d->redo)) {
-		free(text);
-		return say(err, errlen, "%s: bad undo history", j->snap_path);
-	}
+	const char *body = memchr(text, '\n', len);
+	char msg[400];
+	int rc = 0;
+	if (!body || sscanf(text, "snapshot 1 %" SCNu64, snap_seq) != 1)
+		rc = say(err, errlen, "%s: not a snapshot", j->snap_path);
+	else if (journal_state_read(d, body + 1, len - (size_t)(body + 1 - text), msg, sizeof msg) < 0)
+		rc = say(err, errlen, "%s: %s", j->snap_path, msg);
 	free(text);
-	return 0;
+	return rc;
 }
 
 /* ---- recovery ------------------------------------------------------------- */
@@ -253,6 +264,8 @@ journal_open(struct journal *j, struct daemon *d, char *err, size_t errlen)
 static int
 record(struct journal *j, char kind, const char *body, size_t len)
 {
+	if (j->fd < 0)
+		return 0;
 	char head[32];
 	int n = snprintf(head, sizeof head, "%" PRIu64 " %c ", j->seq + 1, kind);
 	/* one write for the whole record, so a crash tears at most the last one */
@@ -271,36 +284,17 @@ record(struct journal *j, char kind, const char *body, size_t len)
 	return rc;
 }
 
-/* a figure's posture, and its behaviours' state and goals, as one number */
-static uint64_t
-figure_hash(const struct env_figure *f)
-{
-	uint64_t h = state_hash(f->model, f->state);
-	if (!f->behave)
-		return h;
-	double v[256];
-	int n = behave_pack(f->behave, v, 256);
-	const unsigned char *p = (const unsigned char *)v;
-	for (size_t i = 0; i < sizeof *v * (size_t)n; i++)
-		h = (h ^ p[i]) * 1099511628211ull;
-	for (int k = 0; k < BEHAVE_NCON; k++) {
-		const struct ik_constraint_def *d = behave_def(f->behave, f->ik, k);
-		const unsigned char *q = (const unsigned char *)&d->goal_xf;
-		for (size_t i = 0; i < sizeof d->goal_xf; i++)
-			h = (h ^ q[i]) * 1099511628211ull;
-		h = (h ^ (unsigned)d->enabled) * 1099511628211ull;
-	}
-	return h;
-}
 
 int
 journal_postures(struct journal *j, const struct daemon *d)
 {
+	if (j->fd < 0)
+		return 0;
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
 		const struct env_figure *f = &d->env.fig[i];
 		if (!f->gen)
 			continue;
-		uint64_t h = figure_hash(f);
+		uint64_t h = posture_figure_hash(f);
 		if (j->posture_gen[i] == f->gen && j->posture_hash[i] == h)
 			continue;
 		char *buf = NULL;
@@ -340,6 +334,8 @@ journal_command(struct journal *j, const struct daemon *d, const char *line, siz
 int
 journal_sync(struct journal *j)
 {
+	if (j->fd < 0)
+		return 0;
 	return fdatasync(j->fd);
 }
 

@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "daemon/daemon.h"
 
@@ -29,6 +30,8 @@ struct journal {
 	uint64_t posture_hash[ENV_MAX_FIGURES]; /* postures as the journal knows them */
 	uint32_t posture_gen[ENV_MAX_FIGURES];
 };
+
+/* a journal whose fd is -1 is off: every call below but journal_open does nothing (a replay) */
 
 /*
  * Opens the journal in state_dir and brings d to the last recorded state
@@ -60,5 +63,13 @@ int journal_sync(struct journal *j);
 int journal_snapshot(struct journal *j, const struct daemon *d, int force);
 
 void journal_close(struct journal *j);
+
+/*
+ * The state a snapshot holds, after its first line: the session, then the
+ * undo and redo checkpoints. Written: 0, or -1 on a stream error. Read
+ * into d (an empty environment): 0, or -1 with what is wrong in err.
+ */
+int journal_state_write(const struct daemon *d, FILE *f);
+int journal_state_read(struct daemon *d, const char *text, size_t len, char *err, size_t errlen);
 
 #endif

@@ -1,6 +1,8 @@
 /* loop.c - the frame loop: the only file that sees compute and I/O together */
 #include "daemon/loop.h"
 
+#include "daemon/loop_state.h"
+
 #include <errno.h>
 #include <inttypes.h>
 #include <jansson.h>
@@ -14,94 +16,17 @@
 #include <unistd.h>
 
 #include "daemon/cmd.h"
-#include "daemon/complete.h"
-#include "daemon/dials.h"
-#include "daemon/events.h"
 #include "daemon/kiosk_route.h"
-#include "daemon/modes.h"
 #include "daemon/notify.h"
-#include "daemon/scene.h"
 #include "devices/can_dev.h"
-#include "devices/escape_chord.h"
-#include "devices/hotplug.h"
 #include "devices/input_backends.h"
-#include "devices/input_devs.h"
-#include "devices/motion_scale.h"
-#include "pose/attach.h"
-#include "pose/behave.h"
 
-/*
- * Idle, the loop still ticks this often: what waits on time alone (the
- * dials' step ending after they have been still, a held button's release)
- * happens at most this late, for a solve of a figure at rest each time.
- */
-#define LOOP_IDLE_TICK_US 250000
-
-struct loop {
-	struct daemon d;
-	struct server srv;
-	struct journal j;
-	struct complete complete; /* Tab at the kiosk's edit line */
-	struct dials dials;       /* the dial panel's bindings at work */
-	int screen_given;         /* --screen: the kiosk's screen is not the framebuffer's */
-	int sig_fd;
-	uint64_t period_us;
-	uint64_t synced_seq;  /* the last journal record known to be on disk */
-	uint64_t virtual_us;  /* the clock of settle's frames */
-	uint64_t fps_t0, fps_frames;
-	uint64_t watchdog_us, watchdog_last;
-	/*
-	 * the poll round under way: its start, and its solving so far (frames of
-	 * settle included), in real time and in the loop thread's CPU time
-	 */
-	uint64_t round_t0, round_cpu0, round_drawn0, round_drawn_cpu0; /* round_t0 0: none yet */
-	uint64_t round_solve_us, round_solve_cpu_us;
-	uint64_t stall_t0, stall_max, stall_cpu_max; /* the second being measured, its longest */
-	int idle; /* the last frame changed nothing: slow ticks until something comes in */
-	struct events events; /* what the clients subscribed to */
-	struct input_queue input; /* from the devices and the socket's input lines */
-	struct can_map panel;     /* the dial panel's map, when one is given */
-	struct input_devs devs;   /* the mice, keyboards and panels read directly */
-	/* each device's motion to pixels; the last: the socket's input lines */
-	struct motion_scale pointer[INPUT_DEVS_MAX + 1];
-	double pointer_gain;
-	struct hotplug hotplug;   /* devices arriving; fd -1: not watched */
-	struct escape_chord escape; /* the grab's way out at the keyboard */
-	struct modes modes;         /* the interactive modes the input drives, and their views */
-	struct scene scene;   /* the views' pictures */
-	int stop;
-};
-
+/* the state's clock: the recording's in a replay, and recorded while recording */
 static uint64_t
-real_now(void *ctx)
+state_clock(struct daemon *d)
 {
-	(void)ctx;
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
-}
-
-static uint64_t
-clock_us(void)
-{
-	return real_now(NULL);
-}
-
-/* the loop thread's own CPU time: a round's stall apart from the CPUs being busy elsewhere */
-static uint64_t
-thread_cpu_us(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
-}
-
-/* settle's clock: every read advances it, so the time limit cuts alike on every run */
-static uint64_t
-virtual_now(void *ctx)
-{
-	struct loop *L = ctx;
-	return L->virtual_us += 20;
+	struct loop *L = d->loop;
+	return tape_clock(&L->tape);
 }
 
 /* a line the loop runs as if a client sent it, journaled when it changes state */
@@ -188,106 +113,7 @@ command_from_modes(void *ctx, const char *line)
 	run_own_command(ctx, line);
 }
 
-/* the input queued since the last frame, taken in order; returns how many events */
-static int
-take_input(struct loop *L)
-{
-	struct input_event_rec e;
-	int n = 0;
-	while (input_queue_pop(&L->input, &e)) {
-		n++;
-		long px = 0, py = 0;
-		struct motion_scale *m = e.device < INPUT_DEVS_MAX ? &L->pointer[e.device]
-								   : &L->pointer[INPUT_DEVS_MAX];
-		if (e.kind == INPUT_ADDED && e.device < INPUT_DEVS_MAX)
-			motion_scale_init(m, L->devs.place[e.device].info.dpi, L->pointer_gain);
-		else if (e.kind == INPUT_MOTION)
-			motion_scale_apply(m, e.x, e.y, &px, &py);
-		if (escape_chord_feed(&L->escape, &e) && L->devs.grab) {
-			input_devs_set_grab(&L->devs, 0);
-			fprintf(stderr, "postured: Ctrl+Alt+Backspace: the kiosk grab given up "
-					"('set input grab=yes' takes it again)\n");
-		}
-		if (!L->scene.input_us && e.kind != INPUT_FRAME) /* the oldest the pictures owe */
-			L->scene.input_us = e.t_us;
-		events_input(&L->events, &e, px, py);
-		dials_input(&L->dials, &e);
-		kiosk_route_input(&L->modes, &e, px, py);
-	}
-	events_kiosk(&L->events);
-	return n;
-}
-
 /* ---- frames ------------------------------------------------------------------ */
-
-static int
-has_work(const struct env *e, int fig)
-{
-	if (e->fig[fig].behave)
-		return 1;
-	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++)
-		if (e->con[i].gen && e->con[i].fig == fig && e->con[i].def.enabled)
-			return 1;
-	return 0;
-}
-
-/* one frame: solve every figure with work within the budget */
-static int
-frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *changed)
-{
-	struct env *e = &L->d.env;
-	uint64_t start = real_now(NULL), start_cpu = thread_cpu_us();
-	int busy = 0;
-	*changed = 0;
-	for (int i = 0; i < ENV_MAX_FIGURES; i++)
-		busy += e->fig[i].gen && has_work(e, i);
-	L->d.stats.ik_us = 0;
-	L->d.stats.iterations = 0;
-	L->d.stats.time_cut = L->d.stats.step_cut = 0;
-	L->d.stats.budget_us = budget_us;
-	for (int i = 0; i < ENV_MAX_FIGURES && busy; i++) {
-		struct env_figure *f = &e->fig[i];
-		if (!f->gen || !has_work(e, i))
-			continue;
-		env_sync_solver(e, i);
-		uint64_t before = state_hash(f->model, f->state);
-		struct ik_options opt = ik_default_options();
-		opt.budget_us = budget_us / (uint64_t)busy; /* an equal share each */
-		if (f->behave) /* hands and feet holding on to objects go where the objects are */
-			attach_before_solve(e, i);
-		uint64_t t0 = real_now(NULL);
-		struct ik_result r = f->behave ? behave_frame(f->behave, f->model, f->state, f->ik, &opt,
-							      clock)
-					       : ik_solve(f->ik, f->model, f->state, &opt, clock);
-		double us = (double)(real_now(NULL) - t0);
-		L->d.stats.ik_us += us;
-		L->d.stats.iterations += r.iterations;
-		L->d.stats.time_cut |= r.status == IK_TIME_LIMIT;
-		L->d.stats.step_cut |= r.stepped;
-		*changed |= state_hash(f->model, f->state) != before;
-		if (f->behave) /* objects its hands grabbed follow them */
-			*changed |= attach_after_solve(e, i);
-		events_telemetry(&L->events, i, &r, opt.budget_us, us);
-		if (f->behave)
-			events_stability(&L->events, i);
-	}
-	L->d.stats.frame++;
-	L->round_solve_us += real_now(NULL) - start;
-	L->round_solve_cpu_us += thread_cpu_us() - start_cpu;
-	return 0;
-}
-
-static int
-settle_frame(struct daemon *d, int *changed)
-{
-	struct loop *L = d->loop;
-	struct ik_clock clock = { virtual_now, L };
-	take_input(L);
-	modes_frame(&L->modes, real_now(NULL)); /* a snap is eased over real time, settle or not */
-	int rc = frame(L, &clock, L->period_us, changed);
-	events_posture_changes(&L->events);
-	return rc;
-}
 
 static int
 subscribe(struct daemon *d, int client, unsigned kinds, int on)
@@ -367,8 +193,15 @@ request(struct loop *L, int i, const char *line, size_t len)
 		}
 		return;
 	}
+	loop_run_line(L, i, line, len);
+}
+
+void
+loop_run_line(struct loop *L, int i, const char *line, size_t len)
+{
+	tape_client_line(&L->tape, i, line, len);
 	/* a command sees every input that came before it (a mode moved by them, say) */
-	take_input(L);
+	loop_take_input(L);
 	/* what the solver did since the last reply is made durable first */
 	if (journal_postures(&L->j, &L->d) < 0)
 		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
@@ -390,10 +223,11 @@ request(struct loop *L, int i, const char *line, size_t len)
 		events_message(&L->events);
 	}
 	events_posture_changes(&L->events);
-	if (out.reply && out.json)
+	int connected = i >= 0 && i < SERVER_MAX_CLIENTS && L->srv.c[i].fd >= 0; /* not in a replay */
+	if (connected && out.reply && out.json)
 		reply(L, i, out.json);
 	free(out.json);
-	if (out.close && L->srv.c[i].fd >= 0)
+	if (connected && out.close)
 		L->srv.c[i].closing = 1;
 }
 
@@ -532,47 +366,6 @@ open_signals(void)
 	return signalfd(-1, &set, SFD_NONBLOCK | SFD_CLOEXEC);
 }
 
-/*
- * One frame of the running loop. Returns 1 when it changed nothing and
- * nothing waits to be shown: the loop may tick slowly (LOOP_IDLE_TICK_US)
- * until something comes in. Clients following every frame (telemetry,
- * stability) keep it at full rate.
- */
-static int
-live_frame(struct loop *L)
-{
-	struct ik_clock clock = { real_now, NULL };
-	int changed;
-	uint64_t draw = (uint64_t)L->d.stats.draw_us;
-	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
-	/* what this frame changes on screen, apart from what was waiting already */
-	int waiting = L->scene.dirty;
-	L->scene.dirty = 0;
-	int moved = take_input(L) > 0;
-	modes_frame(&L->modes, real_now(NULL));
-	dials_frame(&L->dials, real_now(NULL));
-	events_kiosk(&L->events);
-	frame(L, &clock, budget, &changed);
-	uint64_t now = real_now(NULL);
-	moved |= changed || L->scene.dirty;
-	L->scene.dirty |= waiting || changed;
-	events_posture_changes(&L->events);
-	uint64_t drawn = L->scene.drawn_us;
-	if (scene_publish(&L->scene, &L->d, &L->events, now)) {
-		/* rendering's share of the frame, smoothed: the solver gets the rest (§4.7.2) */
-		double us = (double)(L->scene.drawn_us - drawn);
-		L->d.stats.draw_us = L->d.stats.draw_us ? 0.8 * L->d.stats.draw_us + 0.2 * us : us;
-	}
-	L->fps_frames++;
-	if (now - L->fps_t0 >= 1000000) {
-		L->d.stats.fps = (double)L->fps_frames * 1e6 / (double)(now - L->fps_t0);
-		L->fps_t0 = now;
-		L->fps_frames = 0;
-	}
-	return !moved && !scene_waiting(&L->scene, &L->events) &&
-	       !events_wanted(&L->events, SUB_TELEMETRY | SUB_STABILITY);
-}
-
 /* systemd's watchdog, fed at half its period; returns ms to the next feed, -1: none */
 static int
 feed_watchdog(struct loop *L, uint64_t now)
@@ -590,8 +383,8 @@ feed_watchdog(struct loop *L, uint64_t now)
 static void
 round_begin(struct loop *L)
 {
-	L->round_t0 = real_now(NULL);
-	L->round_cpu0 = thread_cpu_us();
+	L->round_t0 = loop_real_now();
+	L->round_cpu0 = loop_thread_cpu_us();
 	L->round_drawn0 = L->scene.drawn_us;
 	L->round_drawn_cpu0 = L->scene.drawn_cpu_us;
 	L->round_solve_us = L->round_solve_cpu_us = 0;
@@ -607,7 +400,7 @@ round_end(struct loop *L)
 {
 	if (!L->round_t0)
 		return;
-	uint64_t now = real_now(NULL), cpu = thread_cpu_us() - L->round_cpu0;
+	uint64_t now = loop_real_now(), cpu = loop_thread_cpu_us() - L->round_cpu0;
 	uint64_t work = L->round_solve_us + (L->scene.drawn_us - L->round_drawn0);
 	uint64_t work_cpu = L->round_solve_cpu_us + (L->scene.drawn_cpu_us - L->round_drawn_cpu0);
 	uint64_t stall = now - L->round_t0 > work ? now - L->round_t0 - work : 0;
@@ -660,7 +453,7 @@ open_devices(struct loop *L, const struct loop_config *cfg, char *err, size_t er
 	input_devs_init(&L->devs, input_backends, input_backends_count, cfg->grab, &L->input);
 	L->d.devices = &L->devs;
 	for (int k = 0; k < nspec; k++)
-		if (input_devs_open(&L->devs, spec[k], real_now(NULL), err, errlen) < 0)
+		if (input_devs_open(&L->devs, spec[k], loop_real_now(), err, errlen) < 0)
 			return -1;
 	announce_devices(L);
 	for (int k = 0; k < L->devs.nskip; k++)
@@ -683,7 +476,7 @@ devices_arrived(struct loop *L)
 {
 	if (hotplug_read(&L->hotplug) <= 0)
 		return;
-	if (input_devs_rescan(&L->devs, real_now(NULL)) > 0)
+	if (input_devs_rescan(&L->devs, loop_real_now()) > 0)
 		announce_devices(L);
 }
 
@@ -707,22 +500,24 @@ set_input(struct daemon *d, int grab, double gain)
 }
 
 int
-loop_run(const struct loop_config *cfg)
+loop_setup(struct loop *L, const struct loop_config *cfg)
 {
-	struct loop *L = calloc(1, sizeof *L);
 	char err[512];
-	if (!L)
-		return 1;
+	L->cfg = cfg;
+	L->j.fd = -1;
+	L->sig_fd = -1;
 	env_init(&L->d.env);
 	snprintf(L->d.state_dir, sizeof L->d.state_dir, "%s", cfg->state_dir);
 	snprintf(L->d.library_dir, sizeof L->d.library_dir, "%s", cfg->library_dir ? cfg->library_dir : "");
 	L->d.loop = L;
-	L->d.run_frame = settle_frame;
+	L->d.run_frame = loop_settle_frame;
 	L->d.subscribe = subscribe;
 	L->d.render_view = render_view;
 	L->d.render_screen = render_screen;
 	L->d.input_latencies = input_latencies;
 	L->d.set_input = set_input;
+	L->d.record = loop_record;
+	L->d.recording = loop_recording;
 	modes_init(&L->modes, &L->d, &L->scene, command_from_modes, L);
 	start_kiosk(L, cfg);
 	L->d.picked.fig = -1;
@@ -739,34 +534,47 @@ loop_run(const struct loop_config *cfg)
 	L->hotplug.fd = -1;
 	input_queue_init(&L->input);
 	L->d.input = &L->input;
-	L->d.now_us = clock_us;
+	L->d.now_us = state_clock;
 	scene_init(&L->scene, cfg->frames_dir);
-	L->scene.cpu_us = thread_cpu_us;
+	L->scene.cpu_us = loop_thread_cpu_us;
+	L->scene.wall_us = loop_real_now;
 	L->period_us = (uint64_t)(1e6 / cfg->fps);
-	L->srv.unix_fd = L->srv.tcp_fd = -1;
-	int status = 1;
+	server_init(&L->srv);
 	if (events_init(&L->events, &L->srv, &L->d) < 0)
-		goto out;
+		return -1;
 	if (cfg->panel_map) {
 		if (can_map_read(cfg->panel_map, &L->panel, err, sizeof err) < 0) {
 			fprintf(stderr, "postured: panel map: %s\n", err);
-			goto out;
+			return -1;
 		}
 		L->d.panel = &L->panel;
 	}
 	if (open_devices(L, cfg, err, sizeof err) < 0) {
 		fprintf(stderr, "postured: %s\n", err);
-		goto out;
+		return -1;
 	}
 	/* the bindings name the dials as the panel's map does (a map arriving later renames) */
 	if (cfg->bindings && dials_load(&L->dials, cfg->bindings, L->d.panel, err, sizeof err) < 0) {
 		fprintf(stderr, "postured: bindings: %s\n", err);
-		goto out;
+		return -1;
 	}
 	if (cfg->fb_device && !(L->scene.fb = open_fb(cfg->fb_device, L, err, sizeof err))) {
 		fprintf(stderr, "postured: framebuffer %s: %s\n", cfg->fb_device, err);
-		goto out;
+		return -1;
 	}
+	return 0;
+}
+
+int
+loop_run(const struct loop_config *cfg)
+{
+	struct loop *L = calloc(1, sizeof *L);
+	char err[512];
+	if (!L)
+		return 1;
+	int status = 1;
+	if (loop_setup(L, cfg) < 0)
+		goto out;
 	if (journal_open(&L->j, &L->d, err, sizeof err) < 0) {
 		fprintf(stderr, "postured: cannot recover the state: %s\n", err);
 		goto out;
@@ -776,6 +584,11 @@ loop_run(const struct loop_config *cfg)
 	if (cfg->init_file && env_count(&L->d.env) == 0 && L->j.seq == 0 && run_init(L, cfg->init_file) < 0)
 		goto out;
 	L->synced_seq = L->j.seq;
+	/* a recording starts from the state recovered */
+	if (cfg->record_dir && loop_record(&L->d, cfg->record_dir, err, sizeof err) < 0) {
+		fprintf(stderr, "postured: record: %s\n", err);
+		goto out;
+	}
 	if (server_open(&L->srv, cfg->socket_path, cfg->tcp_port, cfg->token, err, sizeof err) < 0) {
 		fprintf(stderr, "postured: %s\n", err);
 		goto out;
@@ -785,13 +598,13 @@ loop_run(const struct loop_config *cfg)
 		goto out;
 	}
 	L->watchdog_us = notify_watchdog_usec();
-	L->fps_t0 = real_now(NULL);
+	L->fps_t0 = loop_real_now();
 	notify_send("READY=1");
 	fprintf(stderr, "postured: listening on %s%s\n", cfg->socket_path,
 		cfg->tcp_port > 0 ? " and 127.0.0.1 (token required)" : "");
 	static struct pollfd fds[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
 	static int owner[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
-	uint64_t next = real_now(NULL); /* a first frame at once: then idle, or ticking */
+	uint64_t next = loop_real_now(); /* a first frame at once: then idle, or ticking */
 	while (!L->stop) {
 		round_end(L);
 		int n = server_pollfds(&L->srv, fds, owner);
@@ -806,7 +619,7 @@ loop_run(const struct loop_config *cfg)
 		int nd = input_devs_pollfds(&L->devs, fds + n, tags, INPUT_DEVS_POLL_MAX);
 		for (int k = 0; k < nd; k++)
 			owner[n++] = -100 - tags[k];
-		uint64_t now = real_now(NULL);
+		uint64_t now = loop_real_now();
 		int watchdog_ms = feed_watchdog(L, now);
 		int timeout = now >= next ? 0 : (int)((next - now + 999) / 1000);
 		if (watchdog_ms >= 0 && watchdog_ms < timeout)
@@ -821,7 +634,7 @@ loop_run(const struct loop_config *cfg)
 			if (!fds[k].revents)
 				continue;
 			if (owner[k] <= -100)
-				input_devs_ready(&L->devs, -100 - owner[k], real_now(NULL), &L->input);
+				input_devs_ready(&L->devs, -100 - owner[k], loop_real_now(), &L->input);
 			else if (owner[k] == -3)
 				L->stop = 1;
 			else if (owner[k] == -4)
@@ -835,14 +648,14 @@ loop_run(const struct loop_config *cfg)
 		/* idle, anything coming in starts a frame at once; then the ticks go on */
 		if (L->idle && (got > 0 || L->input.len)) {
 			L->idle = 0;
-			next = real_now(NULL);
+			next = loop_real_now();
 		}
-		if (real_now(NULL) >= next) {
-			L->idle = live_frame(L);
+		if (loop_real_now() >= next) {
+			L->idle = loop_live_frame(L);
 			next += L->idle && L->period_us < LOOP_IDLE_TICK_US ? LOOP_IDLE_TICK_US
 									: L->period_us;
-			if (next < real_now(NULL)) /* fell behind: do not try to catch up */
-				next = real_now(NULL) + L->period_us;
+			if (next < loop_real_now()) /* fell behind: do not try to catch up */
+				next = loop_real_now() + L->period_us;
 		}
 		/* replies leave only after what they acknowledge is on disk */
 		if (L->j.seq != L->synced_seq) {
@@ -853,6 +666,7 @@ loop_run(const struct loop_config *cfg)
 				fprintf(stderr, "postured: snapshot: %s\n", strerror(errno));
 		}
 		scene_sync(&L->scene, &L->d, &L->events); /* frame events, failures, counters */
+		tape_flush(&L->tape); /* the round's records to the recording's writer */
 		L->d.stats.clients = L->srv.nclients;
 		for (int i = 0; i < SERVER_MAX_CLIENTS; i++)
 			if (L->srv.c[i].fd >= 0)
@@ -869,6 +683,14 @@ loop_run(const struct loop_config *cfg)
 		fprintf(stderr, "postured: final snapshot: %s\n", strerror(errno));
 	status = 0;
 out:
+	loop_record_end(L);
+	loop_teardown(L);
+	return status;
+}
+
+void
+loop_teardown(struct loop *L)
+{
 	server_close(&L->srv);
 	journal_close(&L->j);
 	env_clear(&L->d.env);
@@ -876,10 +698,9 @@ out:
 	daemon_checkpoints_clear(&L->d.redo);
 	daemon_picks_free(&L->d);
 	kiosk_free(L->modes.kiosk);
-	input_devs_close_all(&L->devs, real_now(NULL), &L->input);
+	input_devs_close_all(&L->devs, loop_real_now(), &L->input);
 	hotplug_close(&L->hotplug);
 	events_free(&L->events);
 	scene_free(&L->scene);
 	free(L);
-	return status;
 }

@@ -12,6 +12,7 @@
 
 #include "daemon/cmd.h"
 #include "daemon/loop.h"
+#include "daemon/loop_replay.h"
 
 static const char usage[] =
 	"usage: postured [OPTIONS]\n"
@@ -50,6 +51,17 @@ static const char usage[] =
 	"                     framebuffer's size, else 1280x720)\n"
 	"  --bindings FILE    the dial panel's bindings: dials to joints, the view, behaviours\n"
 	"                     or G, buttons to commands (see tools/panel.bindings)\n"
+	"  --record DIR       record from the start into the new folder DIR: the lines, input and\n"
+	"                     the solver's work, for --replay (also `record start` at run time)\n"
+	"  --replay DIR       replay a recording (its settings first, then the flags) with no\n"
+	"                     socket, devices or state directory, checking every frame's posture\n"
+	"                     against the recording's; prints 'replay: frames=N posture=HASH\n"
+	"                     divergences=N' and exits 0 when nothing diverged\n"
+	"  --until N          stop the replay after its frame N\n"
+	"  --after FILE       once the replay stopped, run FILE's commands and print each reply\n"
+	"                     as 'reply: JSON' (what a replay test asks of the state)\n"
+	"  --speed max|X      the replay's pace: as fast as it goes (max, the default) or X times\n"
+	"                     real time (1: as recorded)\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
 	"  --protocol-table   print the command table of PROTOCOL.md and exit\n"
 	"  --help             this text\n"
@@ -60,6 +72,9 @@ static const char usage[] =
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
 	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16], keymap[128], bindings[PATH_MAX];
+	char record[PATH_MAX], replay[PATH_MAX], after[PATH_MAX];
+	double speed;
+	unsigned long long until;
 	unsigned view_key;
 	int screen_w, screen_h;
 	char input[INPUT_DEVS_MAX][INPUT_DEVS_SPEC_MAX];
@@ -134,6 +149,24 @@ set(struct settings *s, const char *key, const char *val)
 		}
 		s->screen_w = w;
 		s->screen_h = h;
+	} else if (!strcmp(key, "record")) {
+		snprintf(s->record, sizeof s->record, "%s", val);
+	} else if (!strcmp(key, "replay")) {
+		snprintf(s->replay, sizeof s->replay, "%s", val);
+	} else if (!strcmp(key, "until")) {
+		s->until = strtoull(val, &end, 10);
+		if (*end || !val[0] || val[0] == '-' || !s->until) {
+			fprintf(stderr, "postured: until is a frame number from 1\n");
+			return -1;
+		}
+	} else if (!strcmp(key, "after")) {
+		snprintf(s->after, sizeof s->after, "%s", val);
+	} else if (!strcmp(key, "speed")) {
+		s->speed = strcmp(val, "max") ? strtod(val, &end) : 0;
+		if (strcmp(val, "max") && (*end || !(s->speed >= 0.01 && s->speed <= 1000))) {
+			fprintf(stderr, "postured: speed is max, or a factor of real time from 0.01 to 1000\n");
+			return -1;
+		}
 	} else if (!strcmp(key, "bindings")) {
 		snprintf(s->bindings, sizeof s->bindings, "%s", val);
 	} else if (!strcmp(key, "panel"))
@@ -236,12 +269,64 @@ defaults(struct settings *s)
 	s->view_key = KEY_F2;
 }
 
+/*
+ * A recording's settings (its config file), with the files it names
+ * (bindings, the panel's map, the shipped figures) found in the
+ * recording's folder.
+ */
+static int
+replay_settings(struct settings *s, const char *dir)
+{
+	char path[PATH_MAX + 16];
+	snprintf(path, sizeof path, "%s/config", dir);
+	if (read_config(s, path) < 0)
+		return -1;
+	char *names[] = { s->bindings, s->panel, s->library };
+	for (int k = 0; k < 3; k++)
+		if (names[k][0] && names[k][0] != '/') {
+			char full[PATH_MAX * 2 + 2];
+			int n = snprintf(full, sizeof full, "%s/%s", dir, names[k]);
+			if (n >= PATH_MAX) {
+				fprintf(stderr, "postured: %s: path too long\n", full);
+				return -1;
+			}
+			memcpy(names[k], full, (size_t)n + 1);
+		}
+	return 0;
+}
+
+/* --replay: no socket, devices or state directory; the recording's folder is read only */
+static int
+replay(struct settings *s)
+{
+	static const char *const no_input[] = { "none" };
+	struct loop_config cfg = { .socket_path = "", .state_dir = s->replay,
+				   .frames_dir = s->frames[0] ? s->frames : NULL, .fps = s->fps,
+				   .library_dir = s->library[0] ? s->library : NULL,
+				   .fb_device = s->fb[0] ? s->fb : NULL,
+				   .panel_map = s->panel[0] ? s->panel : NULL,
+				   .inputs = no_input, .ninputs = 1, .pointer_gain = s->pointer_gain,
+				   .hotplug = "none", .keymap = s->keymap, .view_key = s->view_key,
+				   .bindings = s->bindings[0] ? s->bindings : NULL,
+				   .screen_w = s->screen_w, .screen_h = s->screen_h,
+				   .replay_dir = s->replay, .speed = s->speed, .until = s->until,
+				   .after = s->after[0] ? s->after : NULL };
+	if (s->frames[0] && make_dirs(s->frames, 0750) < 0) {
+		fprintf(stderr, "postured: %s: %s\n", s->frames, strerror(errno));
+		return 1;
+	}
+	return loop_replay(&cfg);
+}
+
 int
 main(int argc, char **argv)
 {
 	struct settings s = { 0 };
 	defaults(&s);
-	/* the config file first, so flags win */
+	/* a recording's settings first, then the config file, so flags win */
+	for (int i = 1; i < argc; i++)
+		if (!strcmp(argv[i], "--replay") && i + 1 < argc && replay_settings(&s, argv[i + 1]) < 0)
+			return 2;
 	for (int i = 1; i < argc; i++)
 		if (!strcmp(argv[i], "--config") && i + 1 < argc && read_config(&s, argv[i + 1]) < 0)
 			return 2;
@@ -263,6 +348,8 @@ main(int argc, char **argv)
 			return 2;
 		i++;
 	}
+	if (s.replay[0])
+		return replay(&s);
 	char sockdir[PATH_MAX];
 	snprintf(sockdir, sizeof sockdir, "%s", s.socket);
 	char *slash = strrchr(sockdir, '/');
@@ -281,6 +368,6 @@ main(int argc, char **argv)
 				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs,
 				   s.grab, s.pointer_gain, s.hotplug[0] ? s.hotplug : NULL,
 				   s.keymap, s.view_key, s.bindings[0] ? s.bindings : NULL,
-				   s.screen_w, s.screen_h };
+				   s.screen_w, s.screen_h, s.record[0] ? s.record : NULL, NULL, 0, 0, NULL };
 	return loop_run(&cfg);
 }

@@ -44,7 +44,7 @@ modes_init(struct modes *M, struct daemon *d, struct scene *scene,
 static uint64_t
 modes_now(const struct modes *M)
 {
-	return M->d->now_us ? M->d->now_us() : 0;
+	return M->d->now_us ? M->d->now_us(M->d) : 0;
 }
 
 /* view v's camera, as change view left it, back into the view (eye and target) */

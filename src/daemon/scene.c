@@ -259,7 +259,7 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	const struct env_view *vw = &e->view[v];
 	if (scene_ready(sc, err, errlen) < 0)
 		return -1;
-	uint64_t t0 = d->now_us ? d->now_us() : 0, c0 = sc->cpu_us ? sc->cpu_us() : 0;
+	uint64_t t0 = sc->wall_us ? sc->wall_us() : 0, c0 = sc->cpu_us ? sc->cpu_us() : 0;
 	struct camera cam;
 	view_camera_of_view(vw, &cam);
 	view_begin(sc->dl, &cam, vw->width, vw->height);
@@ -300,8 +300,8 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	sc->frame.input_us = sc->input_us;
 	sc->frame.seq = d->stats.frame;
 	*dest = &sc->frame;
-	if (d->now_us)
-		sc->drawn_us += d->now_us() - t0;
+	if (sc->wall_us)
+		sc->drawn_us += sc->wall_us() - t0;
 	if (sc->cpu_us)
 		sc->drawn_cpu_us += sc->cpu_us() - c0;
 	return 0;

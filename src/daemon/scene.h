@@ -63,9 +63,10 @@ struct scene {
 	int dirty; /* something changed since the pictures were last published */
 	uint64_t input_us; /* the oldest input taken since the last pictures (0: none), for latency */
 	struct menu_layout menu_layout; /* the pop-up menu's rows as last laid out */
-	/* time spent rendering so far, by d->now_us and by cpu_us (the loop's stall measure) */
+	/* time spent rendering so far, by wall_us and by cpu_us (the loop's stall measure) */
 	uint64_t drawn_us, drawn_cpu_us;
 	uint64_t (*cpu_us)(void); /* the calling thread's CPU time; NULL: not measured */
+	uint64_t (*wall_us)(void); /* the real clock (never a replay's); NULL: not measured */
 };
 
 void scene_init(struct scene *sc, const char *frames_dir);

@@ -42,14 +42,20 @@ remove_stale(const char *path)
 	return 0;
 }
 
-int
-server_open(struct server *s, const char *path, int tcp_port, const char *token, char *err,
-	    size_t errlen)
+void
+server_init(struct server *s)
 {
 	memset(s, 0, sizeof *s);
 	s->unix_fd = s->tcp_fd = -1;
 	for (int i = 0; i < SERVER_MAX_CLIENTS; i++)
 		s->c[i].fd = -1;
+}
+
+int
+server_open(struct server *s, const char *path, int tcp_port, const char *token, char *err,
+	    size_t errlen)
+{
+	server_init(s);
 	struct sockaddr_un a = { .sun_family = AF_UNIX };
 	if (strlen(path) >= sizeof a.sun_path) {
 		snprintf(err, errlen, "socket path longer than %zu bytes", sizeof a.sun_path - 1);

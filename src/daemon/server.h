@@ -36,6 +36,9 @@ struct server {
 	uint64_t dropped; /* clients dropped for not reading */
 };
 
+/* no sockets and no clients yet (server_open does this first; server_close is safe after it) */
+void server_init(struct server *s);
+
 /*
  * Opens the Unix socket at path (mode 0660; a stale socket file is
  * replaced, a live one refused) and, when tcp_port > 0, 127.0.0.1:port.

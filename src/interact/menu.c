@@ -104,6 +104,9 @@ static const struct group_key group_table[] = {
 	{ "load", "session", G_FILES },
 	{ "undo", "", G_FILES },
 	{ "redo", "", G_FILES },
+	{ "record", "start", G_FILES },
+	{ "record", "stop", G_FILES },
+	{ "get", "record", G_FILES },
 
 	{ "set", "input", G_INPUT },
 	{ "list", "devices", G_INPUT },

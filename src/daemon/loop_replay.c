@@ -1,0 +1,138 @@
+/*
+ * loop_replay.c - `postured --replay DIR`: the recorded lines and frames
+ * run through the loop's own code under the recording's clock, each frame's
+ * postures checked against the recording's (tape.h).
+ */
+#include "daemon/loop_replay.h"
+
+#include "daemon/loop_state.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "daemon/cmd.h"
+#include "daemon/posture_hash.h"
+#include "daemon/tape_read.h"
+
+/* --speed 1: waits until the recording's time t (from its first) has come in real time */
+static void
+pace(uint64_t t, uint64_t *t0, uint64_t *real0, double speed)
+{
+	if (speed <= 0)
+		return;
+	if (!*t0) {
+		*t0 = t;
+		*real0 = loop_real_now();
+		return;
+	}
+	uint64_t due = *real0 + (uint64_t)((double)(t - *t0) / speed);
+	uint64_t now = loop_real_now();
+	if (due > now) {
+		struct timespec ts = { (time_t)((due - now) / 1000000u), (long)((due - now) % 1000000u) * 1000 };
+		nanosleep(&ts, NULL);
+	}
+}
+
+static int
+drive(struct loop *L, double speed, uint64_t until)
+{
+	struct tape *t = &L->tape;
+	const struct tape_entry *e;
+	uint64_t t0 = 0, real0 = 0;
+	while (!t->broken[0] && (e = tape_peek(t)) && e->kind != TAPE_STOP &&
+	       !(until && t->frames >= until)) {
+		if (e->kind == TAPE_LINE) {
+			const struct tape_line *l = tape_line_at(t, e->t);
+			tape_take(t);
+			pace(l->t_us, &t0, &real0, speed);
+			loop_run_line(L, l->client, l->text, l->len);
+		} else if (e->kind == TAPE_FRAME) {
+			pace(e->t, &t0, &real0, speed);
+			loop_live_frame(L);
+			scene_sync(&L->scene, &L->d, &L->events);
+		} else {
+			static const char *const names[] = { "a clock read", "a line", "a frame",
+							     "a solve's work", "a figure's hash",
+							     "joints' hashes", "a frame's end",
+							     "a device's read", "the stop" };
+			snprintf(t->broken, sizeof t->broken,
+				 "%s/frames:%d: %s between frames, where the replay reads none", t->dir,
+				 e->lineno, names[e->kind]);
+		}
+	}
+	return t->broken[0] ? -1 : 0;
+}
+
+/*
+ * --after FILE: its lines run once the replay has ended (or reached
+ * --until), each reply printed as "reply: JSON": what a replay test asks of
+ * the state it reached. Blank and '#' lines are skipped.
+ */
+static int
+run_after(struct loop *L, const char *path)
+{
+	FILE *f = fopen(path, "r");
+	if (!f) {
+		fprintf(stderr, "postured: %s: %s\n", path, strerror(errno));
+		return -1;
+	}
+	char line[4096];
+	while (fgets(line, sizeof line, f)) {
+		size_t len = strcspn(line, "\r\n");
+		line[len] = 0;
+		if (!len || line[0] == '#')
+			continue;
+		struct cmd_outcome out;
+		cmd_run(&L->d, DAEMON_CLIENT_JOURNAL, line, len, &out);
+		modes_sync(&L->modes);
+		printf("reply: %s\n", out.json ? out.json : "null");
+		free(out.json);
+	}
+	fclose(f);
+	return 0;
+}
+
+int
+loop_replay(const struct loop_config *cfg)
+{
+	struct loop *L = calloc(1, sizeof *L);
+	char err[TAPE_PATH_MAX + 600];
+	if (!L)
+		return 1;
+	int status = 1;
+	char *config = NULL;
+	if (loop_setup(L, cfg) < 0)
+		goto out;
+	if (tape_replay_open(&L->tape, cfg->replay_dir, &L->d, &config, err, sizeof err) < 0) {
+		fprintf(stderr, "postured: replay: %s\n", err);
+		goto out;
+	}
+	free(config); /* main read it already: the settings are in cfg */
+	modes_sync(&L->modes);
+	int rc = drive(L, cfg->speed, cfg->until);
+	const struct tape *t = &L->tape;
+	/* the pictures of the end, whatever the pace allowed before */
+	L->scene.dirty = 1;
+	L->scene.last_png_us = 0;
+	scene_publish(&L->scene, &L->d, &L->events, loop_real_now());
+	if (rc < 0)
+		fprintf(stderr, "postured: replay went astray at frame %" PRIu64 ": %s\n", t->frames,
+			t->broken);
+	if (t->divergences)
+		fprintf(stderr, "postured: replay diverged first at frame %" PRIu64 ": %s\n",
+			t->first.frame, t->first.what);
+	if (cfg->after && run_after(L, cfg->after) < 0)
+		rc = -1;
+	printf("replay: frames=%" PRIu64 " posture=%016" PRIx64 " divergences=%" PRIu64 "\n",
+	       t->frames, posture_env_hash(&L->d.env), t->divergences + (rc < 0));
+	fflush(stdout);
+	status = rc < 0 || t->divergences ? 1 : 0;
+out:
+	tape_free(&L->tape);
+	loop_teardown(L);
+	return status;
+}
