@@ -137,7 +137,7 @@ unit-test: $(rel_TESTS) $(san_TESTS) $(rel_TOOLS)
 	done
 
 system-test: $(rel_TOOLS) $(rel_GUEST) | deps
-	POSTURE_BUILD=$(BUILD)/rel $(PY) -m pytest -q -rs tests/system tests/tools tests/guest tests/replays
+	POSTURE_BUILD=$(BUILD)/rel PYTHONPATH=tools $(PY) -m pytest -p posture.pytest_replay -q -rs tests/system tests/tools tests/guest tests/replays
 
 check: layer-check unit-test
 

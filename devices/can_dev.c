@@ -507,6 +507,14 @@ can_backend_stats(const void *dev, struct input_dev_stats *dest)
 	};
 }
 
+/* a candump log has no head: the panel's map, which its frames are decoded by */
+static int
+can_backend_describe(const void *dev, FILE *out)
+{
+	const struct can_dev *d = dev;
+	return d->map ? can_map_write(out, d->map) : -1;
+}
+
 const struct input_backend input_backend_can = {
 	.name = "can",
 	.usage = "can:IFACE:MAPFILE",
@@ -517,4 +525,6 @@ const struct input_backend input_backend_can = {
 	.stats = can_backend_stats,
 	.shared_fds = can_backend_shared_fds,
 	.shared_work = can_backend_shared_work,
+	.rec_format = "candump",
+	.describe = can_backend_describe,
 };

@@ -141,8 +141,8 @@ push(struct can_input *c, struct input_queue *q, uint64_t t_us, enum input_kind 
 		c->lost++;
 }
 
-int
-can_input_feed(struct can_input *c, const uint8_t *frame, size_t n, uint64_t t_us,
+static int
+can_input_feed_work(struct can_input *c, const uint8_t *frame, size_t n, uint64_t t_us,
 	       struct input_queue *q)
 {
 	const struct can_map *m = c->map;
@@ -229,8 +229,18 @@ can_input_feed(struct can_input *c, const uint8_t *frame, size_t n, uint64_t t_u
 	return 0;
 }
 
-void
-can_input_tick(struct can_input *c, uint64_t now_us, struct input_queue *q)
+/* what the tap of q records (queue.h), then the work */
+int
+can_input_feed(struct can_input *c, const uint8_t *frame, size_t n, uint64_t t_us, struct input_queue *q)
+{
+	input_queue_decoder_enter(q, c->device, INPUT_TAP_BYTES, 0, frame, n, t_us);
+	int rc = can_input_feed_work(c, frame, n, t_us, q);
+	input_queue_decoder_leave(q);
+	return rc;
+}
+
+static void
+can_input_tick_work(struct can_input *c, uint64_t now_us, struct input_queue *q)
 {
 	const struct can_map *m = c->map;
 	int events = 0;
@@ -261,8 +271,17 @@ can_input_tick(struct can_input *c, uint64_t now_us, struct input_queue *q)
 		push(c, q, now_us, INPUT_FRAME, 0, 0, 0, 0);
 }
 
-int
-can_input_release_all(struct can_input *c, uint64_t now_us, struct input_queue *q,
+/* what the tap of q records (queue.h), then the work */
+void
+can_input_tick(struct can_input *c, uint64_t now_us, struct input_queue *q)
+{
+	input_queue_decoder_enter(q, c->device, INPUT_TAP_TICK, 0, NULL, 0, now_us);
+	can_input_tick_work(c, now_us, q);
+	input_queue_decoder_leave(q);
+}
+
+static int
+can_input_release_all_work(struct can_input *c, uint64_t now_us, struct input_queue *q,
 		      int stale_valuators)
 {
 	const struct can_map *m = c->map;
@@ -292,4 +311,14 @@ can_input_release_all(struct can_input *c, uint64_t now_us, struct input_queue *
 	if (events)
 		push(c, q, now_us, INPUT_FRAME, 0, 0, 0, 0);
 	return released;
+}
+
+/* what the tap of q records (queue.h), then the work */
+int
+can_input_release_all(struct can_input *c, uint64_t now_us, struct input_queue *q, int stale_valuators)
+{
+	input_queue_decoder_enter(q, c->device, INPUT_TAP_RELEASE, stale_valuators, NULL, 0, now_us);
+	int rc = can_input_release_all_work(c, now_us, q, stale_valuators);
+	input_queue_decoder_leave(q);
+	return rc;
 }

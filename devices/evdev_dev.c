@@ -438,6 +438,18 @@ evdev_backend_open_spec(struct input_devs *s, const char *arg, char *err, size_t
 	return arg ? evdev_backend_open_path(s, arg, 0) : evdev_backend_open_auto(s);
 }
 
+/* the evemu file's head: the device's description, no events */
+static int
+evdev_backend_describe(const void *dev, FILE *out)
+{
+	struct rec_evemu r;
+	memset(&r, 0, sizeof r);
+	evdev_dev_describe(dev, &r);
+	int rc = rec_evemu_write(out, &r);
+	rec_evemu_free(&r);
+	return rc;
+}
+
 const struct input_backend input_backend_evdev = {
 	.name = "evdev",
 	.usage = "evdev:PATH",
@@ -447,4 +459,6 @@ const struct input_backend input_backend_evdev = {
 	.close = evdev_backend_close,
 	.stats = evdev_backend_stats,
 	.set_grab = evdev_backend_set_grab,
+	.rec_format = "evemu",
+	.describe = evdev_backend_describe,
 };

@@ -336,8 +336,8 @@ decode(struct evdev_input *e, const struct input_event *r, struct input_queue *q
 	}
 }
 
-int
-evdev_input_feed(struct evdev_input *e, const uint8_t *bytes, size_t n, struct input_queue *q)
+static int
+evdev_input_feed_work(struct evdev_input *e, const uint8_t *bytes, size_t n, struct input_queue *q)
 {
 	size_t whole = n - n % sizeof(struct input_event);
 	for (size_t off = 0; off < whole; off += sizeof(struct input_event)) {
@@ -355,8 +355,18 @@ evdev_input_feed(struct evdev_input *e, const uint8_t *bytes, size_t n, struct i
 	return -1;
 }
 
+/* what the tap of q records (queue.h), then the work */
 int
-evdev_input_resync(struct evdev_input *e, const uint8_t *keybits, uint64_t t_us,
+evdev_input_feed(struct evdev_input *e, const uint8_t *bytes, size_t n, struct input_queue *q)
+{
+	input_queue_decoder_enter(q, e->device, INPUT_TAP_BYTES, 0, bytes, n, 0);
+	int rc = evdev_input_feed_work(e, bytes, n, q);
+	input_queue_decoder_leave(q);
+	return rc;
+}
+
+static int
+evdev_input_resync_work(struct evdev_input *e, const uint8_t *keybits, uint64_t t_us,
 		   struct input_queue *q)
 {
 	int n = 0;
@@ -382,8 +392,18 @@ evdev_input_resync(struct evdev_input *e, const uint8_t *keybits, uint64_t t_us,
 	return n;
 }
 
+/* what the tap of q records (queue.h), then the work */
 int
-evdev_input_release_all(struct evdev_input *e, uint64_t t_us, struct input_queue *q)
+evdev_input_resync(struct evdev_input *e, const uint8_t *keybits, uint64_t t_us, struct input_queue *q)
+{
+	input_queue_decoder_enter(q, e->device, INPUT_TAP_RESYNC, 0, keybits, KEY_MAX / 8 + 1, t_us);
+	int rc = evdev_input_resync_work(e, keybits, t_us, q);
+	input_queue_decoder_leave(q);
+	return rc;
+}
+
+static int
+evdev_input_release_all_work(struct evdev_input *e, uint64_t t_us, struct input_queue *q)
 {
 	int n = 0;
 	clear_pending(e);
@@ -398,4 +418,14 @@ evdev_input_release_all(struct evdev_input *e, uint64_t t_us, struct input_queue
 	if (n)
 		push(e, q, INPUT_FRAME, 0, 0, t_us);
 	return n;
+}
+
+/* what the tap of q records (queue.h), then the work */
+int
+evdev_input_release_all(struct evdev_input *e, uint64_t t_us, struct input_queue *q)
+{
+	input_queue_decoder_enter(q, e->device, INPUT_TAP_RELEASE, 0, NULL, 0, t_us);
+	int rc = evdev_input_release_all_work(e, t_us, q);
+	input_queue_decoder_leave(q);
+	return rc;
 }

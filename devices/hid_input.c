@@ -362,8 +362,8 @@ drop(struct hid_input *h, uint64_t *counter, uint64_t t, const char *what, unsig
 	return -1;
 }
 
-int
-hid_input_feed(struct hid_input *h, const uint8_t *report, size_t n, uint64_t t_us,
+static int
+hid_input_feed_work(struct hid_input *h, const uint8_t *report, size_t n, uint64_t t_us,
 	       struct input_queue *q)
 {
 	const struct hid_desc *d = h->d;
@@ -417,8 +417,18 @@ hid_input_feed(struct hid_input *h, const uint8_t *report, size_t n, uint64_t t_
 	return 0;
 }
 
-void
-hid_input_release_all(struct hid_input *h, uint64_t t_us, struct input_queue *q)
+/* what the tap of q records (queue.h), then the work */
+int
+hid_input_feed(struct hid_input *h, const uint8_t *report, size_t n, uint64_t t_us, struct input_queue *q)
+{
+	input_queue_decoder_enter(q, h->device, INPUT_TAP_BYTES, 0, report, n, t_us);
+	int rc = hid_input_feed_work(h, report, n, t_us, q);
+	input_queue_decoder_leave(q);
+	return rc;
+}
+
+static void
+hid_input_release_all_work(struct hid_input *h, uint64_t t_us, struct input_queue *q)
 {
 	int any = 0;
 	for (unsigned c = 0; c < HID_INPUT_CODES; c++) {
@@ -434,4 +444,13 @@ hid_input_release_all(struct hid_input *h, uint64_t t_us, struct input_queue *q)
 	memset(h->bits, 0, sizeof h->bits);
 	if (any)
 		push(h, q, t_us, INPUT_FRAME, 0, 0, 0, 0, 0);
+}
+
+/* what the tap of q records (queue.h), then the work */
+void
+hid_input_release_all(struct hid_input *h, uint64_t t_us, struct input_queue *q)
+{
+	input_queue_decoder_enter(q, h->device, INPUT_TAP_RELEASE, 0, NULL, 0, t_us);
+	hid_input_release_all_work(h, t_us, q);
+	input_queue_decoder_leave(q);
 }

@@ -725,6 +725,20 @@ hidraw_backend_stats(const void *dev, struct input_dev_stats *dest)
 	};
 }
 
+/* the hid-recorder file's head: name, path, ids and the report descriptor */
+static int
+hidraw_backend_describe(const void *dev, FILE *out)
+{
+	const struct hidraw_dev *d = dev;
+	struct rec_hid_device r = { .bus = d->info.bus, .vid = d->info.vendor,
+				    .pid = d->info.product, .desc_len = d->desc_len };
+	snprintf(r.name, sizeof r.name, "%s", d->info.name);
+	snprintf(r.phys, sizeof r.phys, "%s", d->info.phys);
+	memcpy(r.desc, d->desc_bytes, d->desc_len);
+	rec_hid_write_device(out, &r, -1);
+	return ferror(out) ? -1 : 0;
+}
+
 const struct input_backend input_backend_hidraw = {
 	.name = "hidraw",
 	.usage = "hidraw:VID:PID[:IFACE], hidraw:PATH",
@@ -733,4 +747,6 @@ const struct input_backend input_backend_hidraw = {
 	.read = hidraw_backend_read,
 	.close = hidraw_backend_close,
 	.stats = hidraw_backend_stats,
+	.rec_format = "hid-recorder",
+	.describe = hidraw_backend_describe,
 };

@@ -17,6 +17,7 @@
 #include <poll.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "devices/event.h"
 #include "devices/queue.h"
@@ -92,6 +93,15 @@ struct input_backend {
 	 * opened); the set asks after the work and its reads are done.
 	 */
 	int (*arrived)(void);
+	/*
+	 * The format a recording keeps the device's bytes in (rec_format:
+	 * "evemu", "hid-recorder" or "candump", the ecosystems' own), and the
+	 * device described in it (describe: the file's head; for candump, whose
+	 * logs have none, the panel's map). 0, or -1 on a stream error. NULL:
+	 * the device is not recorded.
+	 */
+	const char *rec_format;
+	int (*describe)(const void *dev, FILE *out);
 };
 
 #endif

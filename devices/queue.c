@@ -9,6 +9,24 @@ input_queue_init(struct input_queue *q)
 	memset(q, 0, sizeof *q);
 }
 
+void
+input_queue_decoder_enter(struct input_queue *q, uint16_t device, enum input_tap_kind kind,
+			  int arg, const uint8_t *bytes, size_t n, uint64_t t_us)
+{
+	if (!q)
+		return;
+	if (q->tap && !q->in_decoder)
+		q->tap->call(q->tap->user, device, kind, arg, bytes, n, t_us);
+	q->in_decoder++;
+}
+
+void
+input_queue_decoder_leave(struct input_queue *q)
+{
+	if (q)
+		q->in_decoder--;
+}
+
 static struct input_event_rec *
 at(struct input_queue *q, unsigned i)
 {
@@ -83,6 +101,8 @@ merge(struct input_event_rec *o, const struct input_event_rec *e)
 int
 input_queue_push(struct input_queue *q, const struct input_event_rec *e)
 {
+	if (q->tap && !q->in_decoder && e->device != INPUT_DEVICE_SOCKET)
+		q->tap->pushed(q->tap->user, e);
 	if (q->len >= INPUT_QUEUE_SOFT) {
 		if (mergeable((enum input_kind)e->kind)) {
 			struct input_event_rec *o = newest_of_device(q, e, 1);

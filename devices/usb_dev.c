@@ -800,6 +800,15 @@ usb_backend_arrived(void)
 	return a;
 }
 
+/* the hid-recorder file's head: the interface's descriptor as its decoder reads it */
+static int
+usb_backend_describe(const void *dev, FILE *out)
+{
+	const struct usb_dev *d = dev;
+	rec_hid_write_device(out, &d->rec, -1);
+	return ferror(out) ? -1 : 0;
+}
+
 const struct input_backend input_backend_usb = {
 	.name = "usb",
 	.usage = "usb:VID:PID[:IFACE]",
@@ -811,6 +820,8 @@ const struct input_backend input_backend_usb = {
 	.shared_fds = usb_backend_shared_fds,
 	.shared_work = usb_backend_shared_work,
 	.arrived = usb_backend_arrived,
+	.rec_format = "hid-recorder",
+	.describe = usb_backend_describe,
 };
 
 void

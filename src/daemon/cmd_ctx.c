@@ -74,6 +74,8 @@ cmd_key(struct cmd_ctx *c, const char *key)
 int
 cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len)
 {
+	if (for_write && c->d->files_read_only)
+		return cmd_fail(c, "denied", "a replay writes no files");
 	if (!rel[0] || rel[0] == '/')
 		return cmd_fail(c, "denied", "paths are relative to the state directory");
 	for (const char *p = rel; *p; p = strchr(p, '/') ? strchr(p, '/') + 1 : p + strlen(p))

@@ -99,6 +99,7 @@ struct daemon {
 	struct env env;
 	char state_dir[4096];
 	char library_dir[4096]; /* shipped figure files, named "lib:NAME"; empty: none */
+	int files_read_only;    /* a replay: its state directory is the recording, read only */
 	struct checkpoints undo, redo;
 	struct daemon_step step;
 	struct daemon_stats stats;

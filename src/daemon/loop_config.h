@@ -28,6 +28,7 @@ struct loop_config {
 	const char *replay_dir;    /* loop_replay's recording */
 	double speed;              /* loop_replay's pace: 1 real time, 0 as fast as it goes */
 	uint64_t until;            /* loop_replay stops after this frame; 0: at the end */
+	int hash_frames;           /* loop_replay draws every view each frame and hashes the pixels */
 	const char *after;         /* loop_replay's commands once it stopped (their replies printed) */
 };
 

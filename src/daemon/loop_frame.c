@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "daemon/kiosk_route.h"
+#include "daemon/tape_dev.h"
 #include "pose/attach.h"
 #include "pose/behave.h"
 
@@ -53,8 +54,10 @@ loop_take_input(struct loop *L)
 		long px = 0, py = 0;
 		struct motion_scale *m = e.device < INPUT_DEVS_MAX ? &L->pointer[e.device]
 								   : &L->pointer[INPUT_DEVS_MAX];
-		if (e.kind == INPUT_ADDED && e.device < INPUT_DEVS_MAX)
-			motion_scale_init(m, L->devs.place[e.device].info.dpi, L->pointer_gain);
+		if (e.kind == INPUT_ADDED && e.device < INPUT_DEVS_MAX) /* a replay's devices are the tape's */
+			motion_scale_init(m, L->tape.mode == TAPE_REPLAY ? tape_dev_dpi(&L->tape, e.device)
+									 : L->devs.place[e.device].info.dpi,
+					  L->pointer_gain);
 		else if (e.kind == INPUT_MOTION)
 			motion_scale_apply(m, e.x, e.y, &px, &py);
 		if (escape_chord_feed(&L->escape, &e) && L->devs.grab) {

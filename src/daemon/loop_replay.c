@@ -16,6 +16,7 @@
 
 #include "daemon/cmd.h"
 #include "daemon/posture_hash.h"
+#include "daemon/tape_dev.h"
 #include "daemon/tape_read.h"
 
 /* --speed 1: waits until the recording's time t (from its first) has come in real time */
@@ -37,9 +38,39 @@ pace(uint64_t t, uint64_t *t0, uint64_t *real0, double speed)
 	}
 }
 
-static int
-drive(struct loop *L, double speed, uint64_t until)
+/* FNV-1a over 8-byte words: a picture's megabytes hashed at memory speed */
+static uint64_t
+hash_words(uint64_t h, const uint8_t *p, size_t n)
 {
+	size_t k = 0;
+	for (; k + 8 <= n; k += 8) {
+		uint64_t w;
+		memcpy(&w, p + k, 8);
+		h = (h ^ w) * 1099511628211ull;
+	}
+	return posture_fnv(h, p + k, n - k);
+}
+
+/* --hash-frames: every view drawn after each frame, its pixels folded into *h */
+static void
+hash_pictures(struct loop *L, uint64_t *h, uint64_t *n)
+{
+	for (int v = 0; v < ENV_MAX_VIEWS; v++) {
+		const struct frame *f;
+		char err[256];
+		if (!L->d.env.view[v].used || scene_draw(&L->scene, &L->d, v, &f, err, sizeof err) < 0)
+			continue;
+		for (int y = 0; y < f->height; y++)
+			*h = hash_words(*h, f->rgba + (size_t)y * (size_t)f->stride, 4u * (size_t)f->width);
+		(*n)++;
+	}
+}
+
+static int
+drive(struct loop *L, const struct loop_config *cfg, uint64_t *pictures, uint64_t *npictures)
+{
+	double speed = cfg->speed;
+	uint64_t until = cfg->until;
 	struct tape *t = &L->tape;
 	const struct tape_entry *e;
 	uint64_t t0 = 0, real0 = 0;
@@ -54,6 +85,11 @@ drive(struct loop *L, double speed, uint64_t until)
 			pace(e->t, &t0, &real0, speed);
 			loop_live_frame(L);
 			scene_sync(&L->scene, &L->d, &L->events);
+			if (cfg->hash_frames)
+				hash_pictures(L, pictures, npictures);
+		} else if (e->kind == TAPE_DEVICE || e->kind == TAPE_DEVCALL || e->kind == TAPE_EVENT) {
+			tape_take(t);
+			tape_dev_replay(t, e, &L->input);
 		} else {
 			static const char *const names[] = { "a clock read", "a line", "a frame",
 							     "a solve's work", "a figure's hash",
@@ -112,8 +148,11 @@ loop_replay(const struct loop_config *cfg)
 		goto out;
 	}
 	free(config); /* main read it already: the settings are in cfg */
+	L->scene.replaying = 1;
+	L->d.files_read_only = 1;
 	modes_sync(&L->modes);
-	int rc = drive(L, cfg->speed, cfg->until);
+	uint64_t pictures = POSTURE_FNV_BASIS, npictures = 0;
+	int rc = drive(L, cfg, &pictures, &npictures);
 	const struct tape *t = &L->tape;
 	/* the pictures of the end, whatever the pace allowed before */
 	L->scene.dirty = 1;
@@ -127,11 +166,14 @@ loop_replay(const struct loop_config *cfg)
 			t->first.frame, t->first.what);
 	if (cfg->after && run_after(L, cfg->after) < 0)
 		rc = -1;
+	if (cfg->hash_frames)
+		printf("pictures: drawn=%" PRIu64 " hash=%016" PRIx64 "\n", npictures, pictures);
 	printf("replay: frames=%" PRIu64 " posture=%016" PRIx64 " divergences=%" PRIu64 "\n",
 	       t->frames, posture_env_hash(&L->d.env), t->divergences + (rc < 0));
 	fflush(stdout);
 	status = rc < 0 || t->divergences ? 1 : 0;
 out:
+	tape_dev_free(&L->tape);
 	tape_free(&L->tape);
 	loop_teardown(L);
 	return status;

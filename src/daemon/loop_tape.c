@@ -17,6 +17,7 @@
 #include "daemon/posture_hash.h"
 #include "daemon/session.h"
 #include "daemon/statefile.h"
+#include "daemon/tape_dev.h"
 
 /* the regular files of the shipped figures' folder into dir/library */
 static int
@@ -122,6 +123,7 @@ loop_record(struct daemon *d, const char *dir, char *err, size_t errlen)
 			snprintf(err, errlen, "not recording");
 			return -1;
 		}
+		tape_dev_detach(&L->tape, &L->input);
 		if (tape_record_stop(&L->tape) < 0) {
 			snprintf(err, errlen, "the recording could not be written whole (see the log)");
 			return -1;
@@ -172,11 +174,8 @@ loop_record(struct daemon *d, const char *dir, char *err, size_t errlen)
 		tape_record_stop(&L->tape);
 		return -1;
 	}
+	tape_dev_attach(&L->tape, &L->input, &L->devs);
 	fprintf(stderr, "postured: recording into %s\n", dir);
-	if (input_devs_count(&L->devs))
-		fprintf(stderr, "postured: the %d input devices read directly are not recorded yet: "
-				"a replay diverges where they act (input lines are recorded)\n",
-			input_devs_count(&L->devs));
 	return 0;
 }
 
@@ -196,6 +195,8 @@ loop_recording(struct daemon *d, const char **dir, uint64_t counts[3])
 void
 loop_record_end(struct loop *L)
 {
-	if (L->tape.mode == TAPE_RECORD)
+	if (L->tape.mode == TAPE_RECORD) {
+		tape_dev_detach(&L->tape, &L->input);
 		tape_record_stop(&L->tape);
+	}
 }

@@ -60,6 +60,8 @@ static const char usage[] =
 	"  --until N          stop the replay after its frame N\n"
 	"  --after FILE       once the replay stopped, run FILE's commands and print each reply\n"
 	"                     as 'reply: JSON' (what a replay test asks of the state)\n"
+	"  --hash-frames yes  draw every view after each replayed frame and print the pixels' hash\n"
+	"                     as 'pictures: drawn=N hash=HASH' (the same on every run of a machine)\n"
 	"  --speed max|X      the replay's pace: as fast as it goes (max, the default) or X times\n"
 	"                     real time (1: as recorded)\n"
 	"  --config FILE      read 'key = value' lines first (keys: the long options)\n"
@@ -75,6 +77,7 @@ struct settings {
 	char record[PATH_MAX], replay[PATH_MAX], after[PATH_MAX];
 	double speed;
 	unsigned long long until;
+	int hash_frames;
 	unsigned view_key;
 	int screen_w, screen_h;
 	char input[INPUT_DEVS_MAX][INPUT_DEVS_SPEC_MAX];
@@ -159,6 +162,12 @@ set(struct settings *s, const char *key, const char *val)
 			fprintf(stderr, "postured: until is a frame number from 1\n");
 			return -1;
 		}
+	} else if (!strcmp(key, "hash-frames")) {
+		if (strcmp(val, "yes") && strcmp(val, "no")) {
+			fprintf(stderr, "postured: hash-frames is yes or no\n");
+			return -1;
+		}
+		s->hash_frames = !strcmp(val, "yes");
 	} else if (!strcmp(key, "after")) {
 		snprintf(s->after, sizeof s->after, "%s", val);
 	} else if (!strcmp(key, "speed")) {
@@ -310,7 +319,7 @@ replay(struct settings *s)
 				   .bindings = s->bindings[0] ? s->bindings : NULL,
 				   .screen_w = s->screen_w, .screen_h = s->screen_h,
 				   .replay_dir = s->replay, .speed = s->speed, .until = s->until,
-				   .after = s->after[0] ? s->after : NULL };
+				   .after = s->after[0] ? s->after : NULL, .hash_frames = s->hash_frames };
 	if (s->frames[0] && make_dirs(s->frames, 0750) < 0) {
 		fprintf(stderr, "postured: %s: %s\n", s->frames, strerror(errno));
 		return 1;
@@ -368,6 +377,6 @@ main(int argc, char **argv)
 				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs,
 				   s.grab, s.pointer_gain, s.hotplug[0] ? s.hotplug : NULL,
 				   s.keymap, s.view_key, s.bindings[0] ? s.bindings : NULL,
-				   s.screen_w, s.screen_h, s.record[0] ? s.record : NULL, NULL, 0, 0, NULL };
+				   s.screen_w, s.screen_h, s.record[0] ? s.record : NULL, NULL, 0, 0, 0, NULL };
 	return loop_run(&cfg);
 }

@@ -242,7 +242,10 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 	int manipulating = ia && ia->mode != INTERACT_NONE && ia->view == v;
 	char status[VIEW_TEXT_LEN];
 	int caret = v == daemon_kiosk_view(d) ? edit_line(d, width, status, sizeof status) : -1;
-	if (caret < 0)
+	if (caret < 0 && sc->replaying) /* the live timings are not the replay's: pictures stay alike */
+		snprintf(status, sizeof status, "%s   frame %llu   replay", vw->name,
+			 (unsigned long long)d->stats.frame);
+	else if (caret < 0)
 		snprintf(status, sizeof status,
 			 "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
 			 (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,

@@ -67,6 +67,7 @@ struct scene {
 	uint64_t drawn_us, drawn_cpu_us;
 	uint64_t (*cpu_us)(void); /* the calling thread's CPU time; NULL: not measured */
 	uint64_t (*wall_us)(void); /* the real clock (never a replay's); NULL: not measured */
+	int replaying;             /* a replay's pictures: the status line shows no timings */
 };
 
 void scene_init(struct scene *sc, const char *frames_dir);

@@ -180,8 +180,8 @@ make_empty_dir(const char *dir, char *err, size_t errlen)
 	return full ? -1 : 0;
 }
 
-static int
-write_file(const struct tape *t, const char *name, const char *text, size_t len)
+int
+tape_write_file(const struct tape *t, const char *name, const char *text, size_t len)
 {
 	char path[TAPE_PATH_MAX + 64];
 	snprintf(path, sizeof path, "%s/%s", t->dir, name);
@@ -192,7 +192,7 @@ write_file(const struct tape *t, const char *name, const char *text, size_t len)
 static int
 write_manifest(const struct tape *t, int complete)
 {
-	char text[2048];
+	char text[8192];
 	int n = snprintf(text, sizeof text, "posture-recording %d\n", TAPE_VERSION);
 	if (complete)
 		n += snprintf(text + n, sizeof text - (size_t)n,
@@ -205,7 +205,9 @@ write_manifest(const struct tape *t, int complete)
 		      "file start state the session and undo history when recording began\n"
 		      "file lines lines the clients' lines: T_US CLIENT TEXT\n"
 		      "file frames frames the frame log\n");
-	return write_file(t, "manifest", text, (size_t)n);
+	for (int k = 0; k < t->dev_files && (size_t)n < sizeof text - 200; k++)
+		n += snprintf(text + n, sizeof text - (size_t)n, "file %s\n", t->dev_file[k]);
+	return tape_write_file(t, "manifest", text, (size_t)n);
 }
 
 /* the start: the state as a snapshot holds it, then what lives outside the session */
@@ -222,7 +224,7 @@ write_start(const struct tape *t, const struct daemon *d)
 	fprintf(f, "kiosk picked %d %d\n", d->picked.fig, d->picked.joint);
 	bad |= ferror(f);
 	fclose(f);
-	int rc = bad ? -1 : write_file(t, "start", buf, len);
+	int rc = bad ? -1 : tape_write_file(t, "start", buf, len);
 	free(buf);
 	return rc;
 }
@@ -267,7 +269,7 @@ tape_record_start(struct tape *t, const char *dir, const struct daemon *d, const
 	pthread_cond_init(&t->work, NULL);
 	pthread_cond_init(&t->room, NULL);
 	t->mode = TAPE_RECORD;
-	if ((config && write_file(t, "config", config, strlen(config)) < 0) || write_start(t, d) < 0 ||
+	if ((config && tape_write_file(t, "config", config, strlen(config)) < 0) || write_start(t, d) < 0 ||
 	    write_manifest(t, 0) < 0 || tape_out_open(t, TAPE_OUT_FRAMES, "frames") < 0 ||
 	    tape_out_open(t, TAPE_OUT_LINES, "lines") < 0) {
 		snprintf(err, errlen, "%s: %s", dir, strerror(errno));

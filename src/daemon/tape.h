@@ -50,6 +50,8 @@
 #include <stdint.h>
 
 #include "daemon/daemon.h"
+#include "devices/input_devs.h"
+#include "devices/queue.h"
 #include "pose/ik_work.h"
 
 #define TAPE_VERSION 1
@@ -68,7 +70,8 @@ struct tape_out {
 };
 
 enum tape_out_id { TAPE_OUT_FRAMES, TAPE_OUT_LINES, TAPE_OUT_DEV0 };
-#define TAPE_OUTS (TAPE_OUT_DEV0 + TAPE_DEVS)
+#define TAPE_DEV_FILES 32 /* devices recorded, a file each (a device plugged again: a new one) */
+#define TAPE_OUTS (TAPE_OUT_DEV0 + TAPE_DEV_FILES)
 
 enum tape_kind {
 	TAPE_CLOCK,
@@ -80,6 +83,9 @@ enum tape_kind {
 	TAPE_POSTURE,
 	TAPE_READ,
 	TAPE_STOP,
+	TAPE_DEVICE,  /* a device's file begins: fig the device, text "FORMAT FILE MAP", x its dpi */
+	TAPE_DEVCALL, /* a decoder call: fig the device, sub its kind, arg, t, count; text resync bytes */
+	TAPE_EVENT,   /* an event no decoder made (a device arriving or leaving): ev */
 };
 
 struct tape_entry {
@@ -91,6 +97,12 @@ struct tape_entry {
 	struct ik_work work;
 	uint32_t *joints; /* JOINTS: njoints hashes (allocated) */
 	int njoints;
+	int sub, arg;     /* DEVCALL: enum input_tap_kind and its argument */
+	uint64_t count;   /* DEVCALL: the records fed */
+	char *text;       /* DEVICE: "FORMAT FILE MAP"; DEVCALL resync: the bytes (allocated) */
+	size_t ntext;
+	double x;         /* DEVICE: the device's dpi */
+	struct input_event_rec ev; /* EVENT */
 };
 
 struct tape_line {
@@ -107,6 +119,8 @@ struct tape_divergence {
 	char what[512];
 };
 
+struct replay_dev;
+
 struct tape {
 	enum tape_mode mode;
 	char dir[TAPE_PATH_MAX];
@@ -120,6 +134,14 @@ struct tape {
 	int writer_on, quit, write_error;
 	uint64_t waits;            /* times the loop waited for the writer (a full buffer) */
 	uint64_t fig_hash[ENV_MAX_FIGURES]; /* as last written (0: none) */
+	/* the devices' files (tape_dev.c): each index's out (0: none yet), files made */
+	uint8_t dev_open[TAPE_DEVS];
+	int dev_out[TAPE_DEVS];
+	int dev_files;
+	char dev_file[TAPE_DEV_FILES][256]; /* "NAME FORMAT what": the manifest's lines */
+	char dev_iface[TAPE_DEVS][32];
+	struct input_queue_tap tap;
+	const struct input_devs *devs;
 	/* replaying */
 	struct tape_entry *ent;
 	size_t nent, pos;
@@ -133,6 +155,8 @@ struct tape {
 	uint64_t divergences;       /* frames whose posture differed */
 	struct tape_divergence first;
 	uint64_t last_posture;      /* the hash after the last frame replayed */
+	struct replay_dev *rdev[TAPE_DEVS]; /* the recording's devices, played back */
+	double dpi[TAPE_DEVS];      /* ... and their mice's resolutions */
 };
 
 /* the time now (CLOCK_MONOTONIC, us) */
@@ -167,5 +191,7 @@ void tape_out_bytes(struct tape *t, int id, const void *bytes, size_t n);
 void tape_out_escaped(struct tape *t, int id, const char *text, size_t n);
 /* opens file id as dir/name for writing (it must not exist): 0, or -1 with errno */
 int tape_out_open(struct tape *t, int id, const char *name);
+/* writes the whole file dir/name at once (replaced atomically): 0, or -1 with errno */
+int tape_write_file(const struct tape *t, const char *name, const char *text, size_t len);
 
 #endif

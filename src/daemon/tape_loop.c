@@ -24,7 +24,7 @@ tape_real_now(void)
  * figure's hash covers (moved sites, behaviours). Returns the count.
  */
 static int
-part_hashes(const struct env_figure *f, uint32_t *dest, int max)
+part_hashes(const struct env_figure *f, uint64_t whole, uint32_t *dest, int max)
 {
 	const struct model *m = f->model;
 	const struct state *s = f->state;
@@ -34,7 +34,7 @@ part_hashes(const struct env_figure *f, uint32_t *dest, int max)
 					  sizeof *s->q * (size_t)m->jnt_ndof[j]);
 	uint64_t r = posture_fnv(POSTURE_FNV_BASIS, &s->root_site, sizeof s->root_site);
 	dest[n++] = (uint32_t)posture_fnv(r, &s->root_xf, sizeof s->root_xf);
-	dest[n++] = (uint32_t)posture_figure_hash(f);
+	dest[n++] = (uint32_t)whole;
 	return n;
 }
 
@@ -141,27 +141,52 @@ tape_ik_done(struct tape *t, int fig, const struct ik_work *w)
 		tape_out_printf(t, TAPE_OUT_FRAMES, "ik %d %s\n", fig, line);
 }
 
+/* n as hex digits (16 or 8) into p; returns the end */
+static char *
+hex(char *p, uint64_t v, int digits)
+{
+	static const char d[] = "0123456789abcdef";
+	for (int k = digits - 1; k >= 0; k--)
+		p[k] = d[v & 15], v >>= 4;
+	return p + digits;
+}
+
+/*
+ * After a frame: each figure whose hash changed, with its parts' hashes,
+ * then the posture; formatted here and appended at once (the loop's cost
+ * of recording is mostly this).
+ */
 static void
 record_frame_end(struct tape *t, const struct env *e)
 {
+	uint64_t env = POSTURE_FNV_BASIS;
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
 		const struct env_figure *f = &e->fig[i];
 		uint64_t h = f->gen ? posture_figure_hash(f) : 0;
+		if (f->gen) { /* posture_env_hash's sum, from the hashes at hand */
+			env = posture_fnv(env, &i, sizeof i);
+			env = posture_fnv(env, &h, sizeof h);
+		}
 		if (h == t->fig_hash[i])
 			continue;
 		t->fig_hash[i] = h;
-		tape_out_printf(t, TAPE_OUT_FRAMES, "fig %d %016" PRIx64 "\n", i, h);
-		if (!f->gen)
-			continue;
-		uint32_t part[TAPE_JOINTS_MAX];
-		int n = part_hashes(f, part, TAPE_JOINTS_MAX);
-		tape_out_printf(t, TAPE_OUT_FRAMES, "joints %d", i);
-		for (int k = 0; k < n; k++)
-			tape_out_printf(t, TAPE_OUT_FRAMES, " %08" PRIx32, part[k]);
-		tape_out_printf(t, TAPE_OUT_FRAMES, "\n");
+		char line[64 + TAPE_JOINTS_MAX * 9], *p = line;
+		p += snprintf(p, 32, "fig %d ", i);
+		p = hex(p, h, 16);
+		*p++ = '\n';
+		if (f->gen) {
+			uint32_t part[TAPE_JOINTS_MAX];
+			int n = part_hashes(f, h, part, TAPE_JOINTS_MAX);
+			p += snprintf(p, 32, "joints %d", i);
+			for (int k = 0; k < n; k++) {
+				*p++ = ' ';
+				p = hex(p, part[k], 8);
+			}
+			*p++ = '\n';
+		}
+		tape_out_bytes(t, TAPE_OUT_FRAMES, line, (size_t)(p - line));
 	}
-	tape_out_printf(t, TAPE_OUT_FRAMES, "posture %" PRIu64 " %016" PRIx64 "\n", t->frames,
-			posture_env_hash(e));
+	tape_out_printf(t, TAPE_OUT_FRAMES, "posture %" PRIu64 " %016" PRIx64 "\n", t->frames, env);
 }
 
 /* what of figure i differs from the recording's, in words */
@@ -175,7 +200,7 @@ name_parts(const struct tape *t, const struct env_figure *f, int i, char *dest, 
 		snprintf(dest, cap, "the figure is gone");
 		return;
 	}
-	int n = part_hashes(f, part, TAPE_JOINTS_MAX), live = t->live_njoints[i];
+	int n = part_hashes(f, posture_figure_hash(f), part, TAPE_JOINTS_MAX), live = t->live_njoints[i];
 	if (n != live) {
 		snprintf(dest, cap, "%d parts, the recording %d", n, live);
 		return;

@@ -149,6 +149,79 @@ read_lines(struct tape *t, char *err, size_t errlen)
 	return rc;
 }
 
+static int
+hex_bytes(const char *s, struct tape_entry *e)
+{
+	size_t n = strlen(s);
+	if (n % 2 || !(e->text = malloc(n / 2 + 1)))
+		return -1;
+	for (size_t k = 0; k < n / 2; k++) {
+		unsigned v;
+		if (sscanf(s + 2 * k, "%2x", &v) != 1)
+			return -1;
+		e->text[k] = (char)v;
+	}
+	e->ntext = n / 2;
+	return 0;
+}
+
+/* device, dev and event records (tape_dev.h) into e; 0, or -1 with why */
+static int
+parse_device_record(char *line, struct tape_entry *e, char *why, size_t whylen)
+{
+	unsigned long long t, count;
+	int dev, used = 0, arg;
+	char a[32], b[64], c[64], call[16], rest[300];
+	double dpi;
+	unsigned kind, code, flags;
+	int value;
+	if (sscanf(line, "device %d %31s %63s %63s dpi=%lf%n", &dev, a, b, c, &dpi, &used) == 5 &&
+	    !line[used]) {
+		e->kind = TAPE_DEVICE;
+		e->fig = dev;
+		e->x = dpi;
+		if (!(e->text = malloc(200)))
+			return say(why, whylen, "out of memory");
+		snprintf(e->text, 200, "%s %s %s", a, b, c);
+		return 0;
+	}
+	if (sscanf(line, "dev %d %15s %llu%n", &dev, call, &t, &used) == 3) {
+		e->kind = TAPE_DEVCALL;
+		e->fig = dev;
+		e->t = t;
+		char *p = line + used;
+		if (!strcmp(call, "bytes") && sscanf(p, " %llu%n", &count, &used) == 1 && !p[used]) {
+			e->sub = INPUT_TAP_BYTES;
+			e->count = count;
+		} else if (!strcmp(call, "resync") && sscanf(p, " %299s%n", rest, &used) == 1 &&
+			   !p[used] && hex_bytes(rest, e) == 0) {
+			e->sub = INPUT_TAP_RESYNC;
+		} else if (!strcmp(call, "release") && sscanf(p, " %d%n", &arg, &used) == 1 &&
+			   !p[used]) {
+			e->sub = INPUT_TAP_RELEASE;
+			e->arg = arg;
+		} else if (!strcmp(call, "tick") && !*p) {
+			e->sub = INPUT_TAP_TICK;
+		} else {
+			return say(why, whylen, "dev DEV bytes|resync|release|tick T ...");
+		}
+		return 0;
+	}
+	if (sscanf(line, "event %d %llu %u %u %d %u %lf %lf%n", &dev, &t, &kind, &code, &value,
+		   &flags, &e->ev.x, &e->ev.y, &used) == 8 && !line[used] && dev >= 0 &&
+	    dev < 0xffff && kind <= INPUT_FRAME && code <= 0xffff && flags <= 0xff) {
+		e->kind = TAPE_EVENT;
+		e->ev.device = (uint16_t)dev;
+		e->ev.t_us = t;
+		e->ev.kind = (uint8_t)kind;
+		e->ev.code = (uint16_t)code;
+		e->ev.value = value;
+		e->ev.flags = (uint8_t)flags;
+		return 0;
+	}
+	return say(why, whylen, "not a device record of the frame log");
+}
+
 /* one record of the frame log into e; 0, or -1 with why */
 static int
 parse_record(struct tape *t, char *line, struct tape_entry *e, char *why, size_t whylen)
@@ -204,12 +277,18 @@ parse_record(struct tape *t, char *line, struct tape_entry *e, char *why, size_t
 		e->t = a;
 	} else if (!strcmp(line, "stop")) {
 		e->kind = TAPE_STOP;
+	} else if (!strncmp(line, "device ", 7) || !strncmp(line, "dev ", 4) ||
+		   !strncmp(line, "event ", 6)) {
+		if (parse_device_record(line, e, why, whylen) < 0)
+			return -1;
 	} else {
 		return say(why, whylen, "not a record of the frame log");
 	}
 	if ((e->kind == TAPE_IK || e->kind == TAPE_FIG || e->kind == TAPE_JOINTS) &&
 	    (e->fig < 0 || e->fig >= ENV_MAX_FIGURES))
 		return say(why, whylen, "no figure slot %d", e->fig);
+	if ((e->kind == TAPE_DEVICE || e->kind == TAPE_DEVCALL) && (e->fig < 0 || e->fig >= TAPE_DEVS))
+		return say(why, whylen, "no device %d", e->fig);
 	return 0;
 }
 
@@ -238,6 +317,8 @@ read_frames(struct tape *t, char *err, size_t errlen)
 		struct tape_entry *e = &t->ent[t->nent];
 		char why[300];
 		if (parse_record(t, line, e, why, sizeof why) < 0) {
+			free(e->joints);
+			free(e->text);
 			rc = say(err, errlen, "%s/frames:%d: %s", t->dir, n, why);
 			break;
 		}
@@ -273,8 +354,10 @@ read_frames(struct tape *t, char *err, size_t errlen)
 	/* killed: what followed the last complete frame is dropped */
 	fprintf(stderr, "postured: %s was not stopped (the daemon was killed?): replaying its %" PRIu64
 			" complete frames\n", t->dir, whole_frames);
-	for (size_t i = whole; i < t->nent; i++)
+	for (size_t i = whole; i < t->nent; i++) {
 		free(t->ent[i].joints);
+		free(t->ent[i].text);
+	}
 	t->nent = whole;
 	t->frames = whole_frames;
 	t->lines = whole_lines;
@@ -384,8 +467,10 @@ tape_take(struct tape *t)
 void
 tape_free(struct tape *t)
 {
-	for (size_t i = 0; i < t->nent; i++)
+	for (size_t i = 0; i < t->nent; i++) {
 		free(t->ent[i].joints);
+		free(t->ent[i].text);
+	}
 	free(t->ent);
 	for (size_t i = 0; i < t->nline; i++)
 		free(t->line[i].text);

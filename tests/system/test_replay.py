@@ -53,6 +53,7 @@ def drag_session(c):
     for key in ("KEY_ESC",):
         c.request(f"input key {key} down")
         c.request(f"input key {key} up")
+    c.request("save posture human take.pst")  # a file written live, never by a replay
     c.request("settle")
 
 
@@ -149,6 +150,7 @@ def test_a_replay_writes_nothing_but_its_frames(recorded, tmp_path):
     status, out, err = replay(rec, "--frames", str(frames))
     assert status == 0 and out[1] == live, err
     assert {p: p.stat().st_mtime_ns for p in rec.rglob("*")} == before
+    assert not (rec / "take.pst").exists()
     assert (frames / "front.png").exists()
 
 

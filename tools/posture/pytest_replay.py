@@ -1,7 +1,7 @@
 """A pytest plugin: every folder holding recording/ and expect under the collected paths is
 one test, run as `posture-replay run` runs it (posture.replay). Enable it with
-``pytest_plugins = ["posture.pytest_replay"]`` in a conftest.py (tools/ on sys.path), or
-``-p posture.pytest_replay``."""
+``-p posture.pytest_replay`` and tools/ on the path, as `make test` does:
+``PYTHONPATH=tools python -m pytest -p posture.pytest_replay tests/replays``."""
 import pytest
 
 from posture.replay import run_test
