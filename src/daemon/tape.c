@@ -301,6 +301,11 @@ tape_flush(struct tape *t)
 {
 	if (t->mode != TAPE_RECORD)
 		return;
+	/* the writer woken at most every TAPE_FLUSH_US: each wake costs the loop's CPUs a switch */
+	uint64_t now = tape_real_now();
+	if (now - t->flushed_us < TAPE_FLUSH_US)
+		return;
+	t->flushed_us = now;
 	pthread_mutex_lock(&t->mu);
 	pthread_cond_signal(&t->work);
 	pthread_mutex_unlock(&t->mu);

@@ -57,6 +57,7 @@
 #define TAPE_VERSION 1
 #define TAPE_OUT_BYTES (4u << 20) /* each file's buffer between the loop and the writer */
 #define TAPE_PATH_MAX 4096
+#define TAPE_FLUSH_US 50000       /* what the loop wrote reaches the file this late at most */
 #define TAPE_DEVS 16              /* devices recorded (INPUT_DEVS_MAX) */
 #define TAPE_JOINTS_MAX 128       /* joints reported per figure */
 
@@ -133,6 +134,7 @@ struct tape {
 	pthread_cond_t work, room;
 	int writer_on, quit, write_error;
 	uint64_t waits;            /* times the loop waited for the writer (a full buffer) */
+	uint64_t flushed_us;       /* the writer last woken */
 	uint64_t fig_hash[ENV_MAX_FIGURES]; /* as last written (0: none) */
 	/* the devices' files (tape_dev.c): each index's out (0: none yet), files made */
 	uint8_t dev_open[TAPE_DEVS];
@@ -174,7 +176,7 @@ int tape_record_start(struct tape *t, const char *dir, const struct daemon *d,
 		      const char *config, char *err, size_t errlen);
 /* ends the recording: the rest written, "stop", the manifest completed; 0, or -1 */
 int tape_record_stop(struct tape *t);
-/* hands what the loop wrote to the writer thread (at the end of each poll round) */
+/* hands what the loop wrote to the writer thread (called each poll round; wakes it every TAPE_FLUSH_US) */
 void tape_flush(struct tape *t);
 
 /*
