@@ -308,6 +308,7 @@ cmd_get_kiosk(struct cmd_ctx *c)
 	json_object_set_new(c->result, "mode",
 			    json_string(ia && ia->mode != INTERACT_NONE ? interact_name(ia) : "none"));
 	json_object_set_new(c->result, "step", json_boolean(c->d->step.open));
+	json_object_set_new(c->result, "attract", json_boolean(c->d->attracting));
 	if (!k)
 		return 0;
 	const struct editline *el = kiosk_line(k);

@@ -100,6 +100,7 @@ struct daemon {
 	char state_dir[4096];
 	char library_dir[4096]; /* shipped figure files, named "lib:NAME"; empty: none */
 	int files_read_only;    /* a replay: its state directory is the recording, read only */
+	int attracting;         /* the attract mode plays (get kiosk says so) */
 	struct checkpoints undo, redo;
 	struct daemon_step step;
 	struct daemon_stats stats;

@@ -193,6 +193,7 @@ request(struct loop *L, int i, const char *line, size_t len)
 		}
 		return;
 	}
+	loop_attract_input(L, line, len); /* a client's line that is no question ends a demo */
 	loop_run_line(L, i, line, len);
 }
 
@@ -200,29 +201,8 @@ void
 loop_run_line(struct loop *L, int i, const char *line, size_t len)
 {
 	tape_client_line(&L->tape, i, line, len);
-	/* a command sees every input that came before it (a mode moved by them, say) */
-	loop_take_input(L);
-	/* what the solver did since the last reply is made durable first */
-	if (journal_postures(&L->j, &L->d) < 0)
-		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
 	struct cmd_outcome out;
-	cmd_run(&L->d, i, line, len, &out);
-	modes_sync(&L->modes);
-	/* a change is replayed from its command; frames a command ran (settle)
-	 * are recorded as the postures they reached */
-	int rc = out.mutated ? journal_command(&L->j, &L->d, line, len)
-			     : journal_postures(&L->j, &L->d);
-	if (rc < 0)
-		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
-	if (out.mutated)
-		L->scene.dirty = 1;
-	events_kiosk(&L->events);
-	if (out.reply) { /* the message line under the pictures */
-		snprintf(L->d.message, sizeof L->d.message, "> %.*s  %s", (int)(len > 100 ? 100 : len),
-			 line, out.ok ? "ok" : "refused");
-		events_message(&L->events);
-	}
-	events_posture_changes(&L->events);
+	loop_command(L, i, line, len, &out);
 	int connected = i >= 0 && i < SERVER_MAX_CLIENTS && L->srv.c[i].fd >= 0; /* not in a replay */
 	if (connected && out.reply && out.json)
 		reply(L, i, out.json);
@@ -584,6 +564,10 @@ loop_run(const struct loop_config *cfg)
 	if (cfg->init_file && env_count(&L->d.env) == 0 && L->j.seq == 0 && run_init(L, cfg->init_file) < 0)
 		goto out;
 	L->synced_seq = L->j.seq;
+	if (cfg->attract_dir && loop_attract_check(L, err, sizeof err) < 0) {
+		fprintf(stderr, "postured: attract: %s\n", err);
+		goto out;
+	}
 	/* a recording starts from the state recovered */
 	if (cfg->record_dir && loop_record(&L->d, cfg->record_dir, err, sizeof err) < 0) {
 		fprintf(stderr, "postured: record: %s\n", err);
@@ -633,8 +617,12 @@ loop_run(const struct loop_config *cfg)
 		for (int k = 0; k < n; k++) {
 			if (!fds[k].revents)
 				continue;
-			if (owner[k] <= -100)
+			if (owner[k] <= -100) {
+				unsigned queued = L->input.len;
 				input_devs_ready(&L->devs, -100 - owner[k], loop_real_now(), &L->input);
+				if (L->input.len != queued) /* someone at the kiosk: the demo gives way */
+					loop_attract_input(L, NULL, 0);
+			}
 			else if (owner[k] == -3)
 				L->stop = 1;
 			else if (owner[k] == -4)
@@ -645,12 +633,17 @@ loop_run(const struct loop_config *cfg)
 				 (fds[k].revents & (POLLIN | POLLHUP | POLLERR)))
 				client_input(L, owner[k]);
 		}
-		/* idle, anything coming in starts a frame at once; then the ticks go on */
-		if (L->idle && (got > 0 || L->input.len)) {
+		/* the attract mode's frames are the frames while it plays */
+		int attract_ms = -1;
+		if (loop_attract_round(L, &attract_ms)) {
+			next = loop_real_now() + (uint64_t)attract_ms * 1000u;
+			L->idle = 0;
+		} else if (L->idle && (got > 0 || L->input.len)) {
+			/* idle, anything coming in starts a frame at once; then the ticks go on */
 			L->idle = 0;
 			next = loop_real_now();
 		}
-		if (loop_real_now() >= next) {
+		if (!L->attract.on && loop_real_now() >= next) {
 			L->idle = loop_live_frame(L);
 			next += L->idle && L->period_us < LOOP_IDLE_TICK_US ? LOOP_IDLE_TICK_US
 									: L->period_us;
@@ -673,6 +666,7 @@ loop_run(const struct loop_config *cfg)
 				server_flush(&L->srv, i);
 	}
 	fprintf(stderr, "postured: stopping\n");
+	loop_attract_end(L); /* the real state is what is kept */
 	notify_send("STOPPING=1");
 	/* a step under way is kept as it is, as a release would keep it */
 	mode_step(&L->d, 'E');

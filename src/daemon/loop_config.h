@@ -25,6 +25,8 @@ struct loop_config {
 	const char *bindings;      /* the dial panel's bindings file (interact/dial_bind.h), NULL: none */
 	int screen_w, screen_h;    /* the kiosk's screen; 0: the framebuffer's, else 1280x720 */
 	const char *record_dir;    /* record from the start into this folder (daemon/tape.h); NULL: no */
+	const char *attract_dir;   /* the attract mode's recording; NULL: none */
+	double attract_after;      /* ... played after this many seconds without input */
 	const char *replay_dir;    /* loop_replay's recording */
 	double speed;              /* loop_replay's pace: 1 real time, 0 as fast as it goes */
 	uint64_t until;            /* loop_replay stops after this frame; 0: at the end */

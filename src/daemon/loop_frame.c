@@ -7,8 +7,12 @@
  */
 #include "daemon/loop_state.h"
 
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
 #include <time.h>
 
+#include "daemon/cmd.h"
 #include "daemon/kiosk_route.h"
 #include "daemon/tape_dev.h"
 #include "pose/attach.h"
@@ -73,6 +77,33 @@ loop_take_input(struct loop *L)
 	}
 	events_kiosk(&L->events);
 	return n;
+}
+
+void
+loop_command(struct loop *L, int client, const char *line, size_t len, struct cmd_outcome *out)
+{
+	/* a command sees every input that came before it (a mode moved by them, say) */
+	loop_take_input(L);
+	/* what the solver did since the last reply is made durable first */
+	if (journal_postures(&L->j, &L->d) < 0)
+		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	cmd_run(&L->d, client, line, len, out);
+	modes_sync(&L->modes);
+	/* a change is replayed from its command; frames a command ran (settle)
+	 * are recorded as the postures they reached */
+	int rc = out->mutated ? journal_command(&L->j, &L->d, line, len)
+			      : journal_postures(&L->j, &L->d);
+	if (rc < 0)
+		fprintf(stderr, "postured: journal: %s\n", strerror(errno));
+	if (out->mutated)
+		L->scene.dirty = 1;
+	events_kiosk(&L->events);
+	if (out->reply) { /* the message line under the pictures */
+		snprintf(L->d.message, sizeof L->d.message, "> %.*s  %s", (int)(len > 100 ? 100 : len),
+			 line, out->ok ? "ok" : "refused");
+		events_message(&L->events);
+	}
+	events_posture_changes(&L->events);
 }
 
 static int

@@ -80,7 +80,9 @@ drive(struct loop *L, const struct loop_config *cfg, uint64_t *pictures, uint64_
 			const struct tape_line *l = tape_line_at(t, e->t);
 			tape_take(t);
 			pace(l->t_us, &t0, &real0, speed);
-			loop_run_line(L, l->client, l->text, l->len);
+			struct cmd_outcome out;
+			loop_command(L, l->client, l->text, l->len, &out);
+			free(out.json);
 		} else if (e->kind == TAPE_FRAME) {
 			pace(e->t, &t0, &real0, speed);
 			loop_live_frame(L);

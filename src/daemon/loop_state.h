@@ -7,6 +7,7 @@
 #ifndef POSTURE_LOOP_STATE_H
 #define POSTURE_LOOP_STATE_H
 
+#include "daemon/cmd.h"
 #include "daemon/complete.h"
 #include "daemon/dials.h"
 #include "daemon/events.h"
@@ -62,6 +63,18 @@ struct loop {
 	struct modes modes;         /* the interactive modes the input drives, and their views */
 	struct scene scene;   /* the views' pictures */
 	struct tape tape;     /* a recording being made, or the one being replayed */
+	/* the attract mode (loop_attract.c): a recording replayed while nobody is at the kiosk */
+	struct {
+		int on;
+		uint64_t last_input_us; /* real input last came (a device, a client's line) */
+		uint64_t t0_rec, t0_real; /* the recording's time now plays at real time t0_real */
+		char *saved;            /* the state it ends by restoring (journal_state_write) */
+		size_t saved_len;
+		int journal_fd;         /* the journal, off while the demo plays */
+		int picked_fig, picked_joint, pointer_view; /* the kiosk's, outside the session */
+		double pointer_x, pointer_y;
+		int laps;
+	} attract;
 	const struct loop_config *cfg;
 	int stop;
 };
@@ -82,9 +95,26 @@ int loop_take_input(struct loop *L);
 int loop_live_frame(struct loop *L);
 /* `settle`'s frames: the daemon's run_frame */
 int loop_settle_frame(struct daemon *d, int *changed);
-/* a client's line (client: its slot, or DAEMON_CLIENT_*), run as a request */
+/* a client's line (client: its slot, or DAEMON_CLIENT_*), recorded and run as a request */
 void loop_run_line(struct loop *L, int client, const char *line, size_t len);
+/* loop_frame.c: ... its running: input taken first, journaled, the message line; out's json is
+ * the caller's to free */
+void loop_command(struct loop *L, int client, const char *line, size_t len,
+		  struct cmd_outcome *out);
 
+/* loop_attract.c: --attract DIR. Real input came (a device's event, a client's line that is
+ * not a question): an attract under way ends, the state as it was */
+void loop_attract_input(struct loop *L, const char *line, size_t len);
+/* each poll round: starts it after --attract-after idle, plays what is due; 1 while it plays
+ * (its frames are the frames); *wait_ms: when something is due next */
+int loop_attract_round(struct loop *L, int *wait_ms);
+/* the attract's recording read once at start: 0, or -1 with err */
+int loop_attract_check(struct loop *L, char *err, size_t errlen);
+/* the attract's end, as at real input (the daemon stopping) */
+void loop_attract_end(struct loop *L);
+
+/* loop_tape.c: why the kiosk cannot start a recording or a demo now, or NULL */
+const char *loop_kiosk_busy(const struct loop *L);
 /* loop_tape.c: `record start|stop` (the daemon's record hook) */
 int loop_record(struct daemon *d, const char *dir, char *err, size_t errlen);
 /* the daemon's recording hook: the recording under way (1), or none (0) */

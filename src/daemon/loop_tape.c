@@ -97,8 +97,8 @@ config_text(struct loop *L, const char *dir, char *err, size_t errlen)
 }
 
 /* why the kiosk cannot start a recording now (its state is not all in the session), or NULL */
-static const char *
-kiosk_busy(const struct loop *L)
+const char *
+loop_kiosk_busy(const struct loop *L)
 {
 	const struct modes *M = &L->modes;
 	if (M->interact.mode != INTERACT_NONE)
@@ -130,7 +130,7 @@ loop_record(struct daemon *d, const char *dir, char *err, size_t errlen)
 		}
 		return 0;
 	}
-	const char *busy = kiosk_busy(L);
+	const char *busy = loop_kiosk_busy(L);
 	if (busy) {
 		snprintf(err, errlen, "%s", busy);
 		return -1;

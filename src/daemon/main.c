@@ -53,6 +53,9 @@ static const char usage[] =
 	"                     or G, buttons to commands (see tools/panel.bindings)\n"
 	"  --record DIR       record from the start into the new folder DIR: the lines, input and\n"
 	"                     the solver's work, for --replay (also `record start` at run time)\n"
+	"  --attract DIR      the attract mode: the recording DIR replayed in a loop while nobody\n"
+	"                     is at the kiosk; the first real input ends it, the state as it was\n"
+	"  --attract-after S  seconds without input before it starts (default 60)\n"
 	"  --replay DIR       replay a recording (its settings first, then the flags) with no\n"
 	"                     socket, devices or state directory, checking every frame's posture\n"
 	"                     against the recording's; prints 'replay: frames=N posture=HASH\n"
@@ -74,7 +77,8 @@ static const char usage[] =
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
 	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16], keymap[128], bindings[PATH_MAX];
-	char record[PATH_MAX], replay[PATH_MAX], after[PATH_MAX];
+	char record[PATH_MAX], replay[PATH_MAX], after[PATH_MAX], attract[PATH_MAX];
+	double attract_after;
 	double speed;
 	unsigned long long until;
 	int hash_frames;
@@ -152,6 +156,14 @@ set(struct settings *s, const char *key, const char *val)
 		}
 		s->screen_w = w;
 		s->screen_h = h;
+	} else if (!strcmp(key, "attract")) {
+		snprintf(s->attract, sizeof s->attract, "%s", val);
+	} else if (!strcmp(key, "attract-after")) {
+		s->attract_after = strtod(val, &end);
+		if (*end || !(s->attract_after >= 1 && s->attract_after <= 86400)) {
+			fprintf(stderr, "postured: attract-after is seconds from 1 to 86400\n");
+			return -1;
+		}
 	} else if (!strcmp(key, "record")) {
 		snprintf(s->record, sizeof s->record, "%s", val);
 	} else if (!strcmp(key, "replay")) {
@@ -273,6 +285,7 @@ defaults(struct settings *s)
 	else
 		snprintf(s->state_dir, sizeof s->state_dir, "%s/.local/state/posture", home ? home : ".");
 	s->fps = 60;
+	s->attract_after = 60;
 	s->pointer_gain = 1;
 	snprintf(s->keymap, sizeof s->keymap, "us");
 	s->view_key = KEY_F2;
@@ -371,12 +384,18 @@ main(int argc, char **argv)
 	}
 	fprintf(stderr, "postured: socket %s, state %s, frames %s, %.0f fps%s\n", s.socket,
 		s.state_dir, s.frames[0] ? s.frames : "(none)", s.fps, s.tcp ? ", tcp on" : "");
-	struct loop_config cfg = { s.socket, s.state_dir, s.frames[0] ? s.frames : NULL, s.fps,
-				   s.tcp, s.token, s.init[0] ? s.init : NULL,
-				   s.library[0] ? s.library : NULL, s.fb[0] ? s.fb : NULL,
-				   s.panel[0] ? s.panel : NULL, s.inputs, s.ninputs,
-				   s.grab, s.pointer_gain, s.hotplug[0] ? s.hotplug : NULL,
-				   s.keymap, s.view_key, s.bindings[0] ? s.bindings : NULL,
-				   s.screen_w, s.screen_h, s.record[0] ? s.record : NULL, NULL, 0, 0, 0, NULL };
+	struct loop_config cfg = {
+		.socket_path = s.socket, .state_dir = s.state_dir,
+		.frames_dir = s.frames[0] ? s.frames : NULL, .fps = s.fps, .tcp_port = s.tcp,
+		.token = s.token, .init_file = s.init[0] ? s.init : NULL,
+		.library_dir = s.library[0] ? s.library : NULL, .fb_device = s.fb[0] ? s.fb : NULL,
+		.panel_map = s.panel[0] ? s.panel : NULL, .inputs = s.inputs, .ninputs = s.ninputs,
+		.grab = s.grab, .pointer_gain = s.pointer_gain,
+		.hotplug = s.hotplug[0] ? s.hotplug : NULL, .keymap = s.keymap,
+		.view_key = s.view_key, .bindings = s.bindings[0] ? s.bindings : NULL,
+		.screen_w = s.screen_w, .screen_h = s.screen_h,
+		.record_dir = s.record[0] ? s.record : NULL,
+		.attract_dir = s.attract[0] ? s.attract : NULL, .attract_after = s.attract_after,
+	};
 	return loop_run(&cfg);
 }

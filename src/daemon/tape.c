@@ -11,11 +11,20 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "daemon/journal.h"
 #include "daemon/posture_hash.h"
 #include "daemon/statefile.h"
+
+uint64_t
+tape_real_now(void)
+{
+	struct timespec t;
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+}
 
 static int
 write_all(int fd, const char *p, size_t n)

@@ -10,14 +10,6 @@
 #include "daemon/posture_hash.h"
 #include "daemon/tape_read.h"
 
-uint64_t
-tape_real_now(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
-}
-
 /*
  * A figure's parts as hashes, so a divergence can name them: each joint's
  * values, then the root (its site and frame), then the rest of what the
