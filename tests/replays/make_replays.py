@@ -183,6 +183,45 @@ def dial_panel(c):
     time.sleep(0.7)
 
 
+def kiosk_devices(c):
+    """A keyboard and a mouse read directly (evdev, replayed under umockdev): commands typed at
+    the edit line, the right hand dragged with the mouse, ESC on the keyboard."""
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline and c.request("get kiosk")["mode"] != "hand":
+        time.sleep(0.05)
+    while time.monotonic() < deadline and c.request("get kiosk")["mode"] != "none":
+        time.sleep(0.05)
+    time.sleep(0.3)
+
+
+def kiosk_devices_daemon(extra, tmp):
+    """The daemon of kiosk_devices: under umockdev, with evemu files written into tmp."""
+    sys.path.insert(0, str(ROOT / "tests" / "system"))
+    from test_input import kernel_codes
+    from test_kiosk_recorded import EVDEV, KEYBOARD, MOCK, MOUSE, UMOCKDEV_RUN, evemu, typing
+    codes = kernel_codes()
+    keys, t = [], 2.5
+    for text in ("add view front width=320 height=240 eye=0.4,1.1,3.2 target=0,0.9,0",
+                 "load human as human", "behave human on", "manipulate hand human right"):
+        more, t = typing(text, t, codes)
+        keys += more + [(t, 1, codes["KEY_ENTER"], 1), (t + 0.03, 1, codes["KEY_ENTER"], 0)]
+        t += 0.3
+    drag_at = t + 0.3
+    keys += [(drag_at + 1.2, 1, codes["KEY_ESC"], 1), (drag_at + 1.23, 1, codes["KEY_ESC"], 0)]
+    mouse = [(drag_at, 1, codes["BTN_LEFT"], 1)]
+    mouse += [(drag_at + 0.02 * (i + 1), 2, 0, -4) for i in range(30)]  # REL_X: to the left
+    mouse += [(drag_at + 0.7, 1, codes["BTN_LEFT"], 0)]
+    (tmp / "keys.evemu").write_text(evemu(EVDEV / "keyboard.evemu", keys))
+    (tmp / "mouse.evemu").write_text(evemu(EVDEV / "mouse.evemu", mouse))
+    d = Daemon(fps=1000, extra=["--input", f"evdev:{MOUSE}", "--input", f"evdev:{KEYBOARD}"]
+               + extra)
+    d.argv = [UMOCKDEV_RUN, "-d", str(MOCK / "mouse.umockdev"), "-d", str(MOCK / "keyboard.umockdev"),
+              "-i", f"{MOUSE}={MOCK}/mouse.ioctl", "-i", f"{KEYBOARD}={MOCK}/keyboard.ioctl",
+              "-e", f"{MOUSE}={tmp}/mouse.evemu", "-e", f"{KEYBOARD}={tmp}/keys.evemu",
+              "--"] + d.argv
+    return d
+
+
 SESSIONS = {
     "fig_5_3_move_foot": (fig_5_3_move_foot, ["site human foot_l.heel", "margin human above 0"]),
     "fig_5_4_shift_com": (fig_5_4_shift_com, ["margin human above 0"]),
@@ -196,6 +235,7 @@ SESSIONS = {
     "snapping": (snapping, ["site human pelvis.center", "picture front front.png tol=1.5"]),
     "joint": (joint, ["joint human elbow_r", "joint human shoulder_r"]),
     "dial_panel": (dial_panel, ["joint human knee_l", "picture front front.png tol=1.5"]),
+    "kiosk_devices": (kiosk_devices, ["site human hand_r.palm", "picture front front.png tol=1.5"]),
 }
 
 
@@ -208,7 +248,11 @@ def make(name):
     extra = ["--record", str(rec), "--library", str(ROOT / "src" / "figure" / "library"),
              "--panel", str(ROOT / "tests" / "input" / "can" / "panel.map"),
              "--bindings", str(ROOT / "tools" / "panel.bindings")]
-    d = Daemon(fps=1000, extra=extra)
+    if name == "kiosk_devices":
+        import tempfile
+        d = kiosk_devices_daemon(extra, pathlib.Path(tempfile.mkdtemp(prefix="kd-")))
+    else:
+        d = Daemon(fps=1000, extra=extra)
     d.start()
     try:
         with d.client() as c:
