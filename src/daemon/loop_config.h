@@ -28,6 +28,7 @@ struct loop_config {
 	const char *attract_dir;   /* the attract mode's recording; NULL: none */
 	double attract_after;      /* ... played after this many seconds without input */
 	const char *replay_dir;    /* loop_replay's recording */
+	const char *drive_file;    /* loop_drive's script */
 	double speed;              /* loop_replay's pace: 1 real time, 0 as fast as it goes */
 	uint64_t until;            /* loop_replay stops after this frame; 0: at the end */
 	int hash_frames;           /* loop_replay draws every view each frame and hashes the pixels */

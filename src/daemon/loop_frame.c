@@ -182,10 +182,11 @@ loop_settle_frame(struct daemon *d, int *changed)
 int
 loop_live_frame(struct loop *L)
 {
-	struct ik_clock clock = { real_now, NULL };
+	int virtual = L->tape.mode == TAPE_VIRTUAL; /* a driven run: its solves cut by a virtual clock */
+	struct ik_clock clock = { virtual ? virtual_now : real_now, L };
 	int changed;
 	uint64_t begun = tape_frame_begin(&L->tape);
-	uint64_t draw = (uint64_t)L->d.stats.draw_us;
+	uint64_t draw = virtual ? 0 : (uint64_t)L->d.stats.draw_us;
 	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
 	/* what this frame changes on screen, apart from what was waiting already */
 	int waiting = L->scene.dirty;
@@ -197,7 +198,7 @@ loop_live_frame(struct loop *L)
 	frame(L, &clock, budget, &changed);
 	tape_frame_end(&L->tape, &L->d.env);
 	/* a replay's pictures are paced by the recording's clock, not by how fast it runs */
-	uint64_t now = L->tape.mode == TAPE_REPLAY ? begun : loop_real_now();
+	uint64_t now = L->tape.mode == TAPE_REPLAY || virtual ? begun : loop_real_now();
 	moved |= changed || L->scene.dirty;
 	L->scene.dirty |= waiting || changed;
 	events_posture_changes(&L->events);

@@ -12,6 +12,7 @@
 
 #include "daemon/cmd.h"
 #include "daemon/loop.h"
+#include "daemon/loop_drive.h"
 #include "daemon/loop_replay.h"
 
 static const char usage[] =
@@ -53,6 +54,10 @@ static const char usage[] =
 	"                     or G, buttons to commands (see tools/panel.bindings)\n"
 	"  --record DIR       record from the start into the new folder DIR: the lines, input and\n"
 	"                     the solver's work, for --replay (also `record start` at run time)\n"
+	"  --drive FILE       run FILE's lines ('T_US CLIENT TEXT', a recording's form) under a\n"
+	"                     virtual clock, frame after frame as fast as it goes, then --after's\n"
+	"                     queries; prints 'drive: frames=N virtual_s=S posture=HASH'; the\n"
+	"                     state directory and journal as live, no socket or devices\n"
 	"  --attract DIR      the attract mode: the recording DIR replayed in a loop while nobody\n"
 	"                     is at the kiosk; the first real input ends it, the state as it was\n"
 	"  --attract-after S  seconds without input before it starts (default 60)\n"
@@ -77,7 +82,7 @@ static const char usage[] =
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
 	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16], keymap[128], bindings[PATH_MAX];
-	char record[PATH_MAX], replay[PATH_MAX], after[PATH_MAX], attract[PATH_MAX];
+	char record[PATH_MAX], replay[PATH_MAX], after[PATH_MAX], attract[PATH_MAX], drive[PATH_MAX];
 	double attract_after;
 	double speed;
 	unsigned long long until;
@@ -156,6 +161,8 @@ set(struct settings *s, const char *key, const char *val)
 		}
 		s->screen_w = w;
 		s->screen_h = h;
+	} else if (!strcmp(key, "drive")) {
+		snprintf(s->drive, sizeof s->drive, "%s", val);
 	} else if (!strcmp(key, "attract")) {
 		snprintf(s->attract, sizeof s->attract, "%s", val);
 	} else if (!strcmp(key, "attract-after")) {
@@ -396,6 +403,14 @@ main(int argc, char **argv)
 		.screen_w = s.screen_w, .screen_h = s.screen_h,
 		.record_dir = s.record[0] ? s.record : NULL,
 		.attract_dir = s.attract[0] ? s.attract : NULL, .attract_after = s.attract_after,
+		.drive_file = s.drive[0] ? s.drive : NULL, .after = s.after[0] ? s.after : NULL,
 	};
+	if (cfg.drive_file) { /* nothing but the script comes in */
+		static const char *const none[] = { "none" };
+		cfg.inputs = none;
+		cfg.ninputs = 1;
+		cfg.hotplug = "none";
+		return loop_drive(&cfg);
+	}
 	return loop_run(&cfg);
 }

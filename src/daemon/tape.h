@@ -61,7 +61,9 @@
 #define TAPE_DEVS 16              /* devices recorded (INPUT_DEVS_MAX) */
 #define TAPE_JOINTS_MAX 128       /* joints reported per figure */
 
-enum tape_mode { TAPE_OFF, TAPE_RECORD, TAPE_REPLAY };
+/* TAPE_VIRTUAL: a run driven by a script under a virtual clock (loop_drive.c): the clock is
+ * virtual_us, nothing recorded or replayed */
+enum tape_mode { TAPE_OFF, TAPE_RECORD, TAPE_REPLAY, TAPE_VIRTUAL };
 
 /* one file being written: the loop fills buf, the writer thread drains it */
 struct tape_out {
@@ -126,6 +128,7 @@ struct tape {
 	enum tape_mode mode;
 	char dir[TAPE_PATH_MAX];
 	uint64_t frames, lines; /* written or replayed */
+	uint64_t virtual_us;    /* TAPE_VIRTUAL: the time now */
 	/* recording */
 	struct tape_out out[TAPE_OUTS];
 	int nout;                  /* files opened */

@@ -73,6 +73,8 @@ expect(struct tape *t, enum tape_kind kind, const char *wanted)
 uint64_t
 tape_clock(struct tape *t)
 {
+	if (t->mode == TAPE_VIRTUAL)
+		return t->virtual_us;
 	if (t->mode == TAPE_REPLAY) {
 		const struct tape_entry *e = expect(t, TAPE_CLOCK, "a clock read");
 		return e ? e->t : 0;
@@ -97,6 +99,10 @@ tape_client_line(struct tape *t, int client, const char *line, size_t len)
 uint64_t
 tape_frame_begin(struct tape *t)
 {
+	if (t->mode == TAPE_VIRTUAL) {
+		t->frames++;
+		return t->virtual_us;
+	}
 	if (t->mode == TAPE_REPLAY) {
 		const struct tape_entry *e = expect(t, TAPE_FRAME, "a frame");
 		t->frames++;

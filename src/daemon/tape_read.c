@@ -110,43 +110,64 @@ unescape(char *s, size_t *len)
 	return 0;
 }
 
-static int
-read_lines(struct tape *t, char *err, size_t errlen)
+int
+tape_lines_read(const char *path, int torn_ok, struct tape_line **dest, size_t *count, char *err,
+		size_t errlen)
 {
 	size_t len;
-	char *text = slurp(t, "lines", &len, err, errlen);
+	char *text = statefile_read(path, &len);
+	*dest = NULL;
+	*count = 0;
 	if (!text)
-		return -1;
+		return say(err, errlen, "%s: %s", path, strerror(errno));
 	size_t cap = 0;
 	for (size_t i = 0; i < len; i++)
 		cap += text[i] == '\n';
-	t->line = calloc(cap + 1, sizeof *t->line);
-	int rc = t->line ? 0 : say(err, errlen, "out of memory");
+	struct tape_line *out = calloc(cap + 1, sizeof *out);
+	int rc = out ? 0 : say(err, errlen, "out of memory");
 	char *p = text, *line;
 	int torn, n = 0;
+	size_t nline = 0;
+	uint64_t last = 0;
 	while (rc == 0 && (line = next_line(&p, text + len, &torn))) {
 		n++;
 		unsigned long long tu;
 		int client, used = 0;
-		struct tape_line *l = &t->line[t->nline];
-		if (torn) /* a line being written when the daemon was killed: no frame ran it */
+		struct tape_line *l = &out[nline];
+		if (torn && torn_ok) /* a line being written when the daemon was killed: no frame ran it */
 			break;
 		if (sscanf(line, "%llu %d %n", &tu, &client, &used) != 2 || !used ||
-		    line[used - 1] != ' ' || unescape(line + used, &l->len) < 0) {
-			rc = say(err, errlen, "%s/lines:%d: expected T_US CLIENT TEXT", t->dir, n);
+		    line[used - 1] != ' ' || unescape(line + used, &l->len) < 0 || tu < last) {
+			rc = say(err, errlen, "%s:%d: expected T_US CLIENT TEXT, in time order", path, n);
 			break;
 		}
-		l->t_us = tu;
+		l->t_us = last = tu;
 		l->client = client;
 		if (!(l->text = malloc(l->len + 1))) {
 			rc = say(err, errlen, "out of memory");
 			break;
 		}
 		memcpy(l->text, line + used, l->len + 1);
-		t->nline++;
+		nline++;
 	}
 	free(text);
+	if (rc < 0 && out) {
+		for (size_t i = 0; i < nline; i++)
+			free(out[i].text);
+		free(out);
+		return -1;
+	}
+	*dest = out;
+	*count = nline;
 	return rc;
+}
+
+static int
+read_lines(struct tape *t, char *err, size_t errlen)
+{
+	char path[TAPE_PATH_MAX + 16];
+	snprintf(path, sizeof path, "%s/lines", t->dir);
+	return tape_lines_read(path, 1, &t->line, &t->nline, err, errlen);
 }
 
 static int

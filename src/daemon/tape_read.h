@@ -14,6 +14,14 @@
  */
 int tape_replay_open(struct tape *t, const char *dir, struct daemon *d, char **config,
 		     char *err, size_t errlen);
+/*
+ * Lines in the form of a recording's `lines` (T_US CLIENT TEXT, in time
+ * order) into *dest (count of them; free each text, then the array). A torn
+ * last line is dropped when torn_ok. 0, or -1 with "path:line: why".
+ */
+int tape_lines_read(const char *path, int torn_ok, struct tape_line **dest, size_t *count,
+		    char *err, size_t errlen);
+
 /* the next record, not taken; NULL at the end */
 const struct tape_entry *tape_peek(const struct tape *t);
 /* line n of `lines` (from 1); NULL: no such line */
