@@ -25,22 +25,6 @@ say(char *err, size_t errlen, const char *fmt, ...)
 	return -1;
 }
 
-static int
-write_all(int fd, const char *p, size_t n)
-{
-	while (n) {
-		ssize_t w = write(fd, p, n);
-		if (w < 0 && errno == EINTR)
-			continue;
-		if (w < 0)
-			return -1;
-		p += w;
-		n -= (size_t)w;
-	}
-	return 0;
-}
-
-
 /* the current posture hashes, so only later solver changes are recorded */
 static void
 note_postures(struct journal *j, const struct daemon *d)
@@ -275,7 +259,7 @@ record(struct journal *j, char kind, const char *body, size_t len)
 	memcpy(buf, head, (size_t)n);
 	memcpy(buf + n, body, len);
 	buf[(size_t)n + len] = '\n';
-	int rc = write_all(j->fd, buf, (size_t)n + len + 1);
+	int rc = statefile_write_all(j->fd, buf, (size_t)n + len + 1);
 	free(buf);
 	if (rc == 0) {
 		j->seq++;

@@ -27,28 +27,6 @@ run(struct loop *L, const struct tape_line *l, int print)
 	free(out.json);
 }
 
-/* --after: each line's reply printed */
-static int
-queries(struct loop *L, const char *path)
-{
-	FILE *f = fopen(path, "r");
-	if (!f) {
-		fprintf(stderr, "postured: %s: %s\n", path, strerror(errno));
-		return -1;
-	}
-	char line[4096];
-	while (fgets(line, sizeof line, f)) {
-		size_t len = strcspn(line, "\r\n");
-		line[len] = 0;
-		if (!len || line[0] == '#')
-			continue;
-		struct tape_line l = { L->tape.virtual_us, DAEMON_CLIENT_JOURNAL, line, len };
-		run(L, &l, 1);
-	}
-	fclose(f);
-	return 0;
-}
-
 int
 loop_drive(const struct loop_config *cfg)
 {
@@ -86,7 +64,7 @@ loop_drive(const struct loop_config *cfg)
 		if (L->tape.virtual_us >= end)
 			break;
 	}
-	status = cfg->after && queries(L, cfg->after) < 0 ? 1 : 0;
+	status = cfg->after && loop_queries(L, cfg->after) < 0 ? 1 : 0;
 	/* as a live daemon stops: the step kept, the postures and a snapshot on disk */
 	if (L->d.mode_step)
 		L->d.mode_step(&L->d, 'E');

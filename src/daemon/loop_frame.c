@@ -9,6 +9,7 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -104,6 +105,29 @@ loop_command(struct loop *L, int client, const char *line, size_t len, struct cm
 		events_message(&L->events);
 	}
 	events_posture_changes(&L->events);
+}
+
+int
+loop_queries(struct loop *L, const char *path)
+{
+	FILE *f = fopen(path, "r");
+	if (!f) {
+		fprintf(stderr, "postured: %s: %s\n", path, strerror(errno));
+		return -1;
+	}
+	char line[4096];
+	while (fgets(line, sizeof line, f)) {
+		size_t len = strcspn(line, "\r\n");
+		line[len] = 0;
+		if (!len || line[0] == '#')
+			continue;
+		struct cmd_outcome out;
+		loop_command(L, DAEMON_CLIENT_JOURNAL, line, len, &out);
+		printf("reply: %s\n", out.json ? out.json : "null");
+		free(out.json);
+	}
+	fclose(f);
+	return 0;
 }
 
 static int

@@ -105,35 +105,6 @@ drive(struct loop *L, const struct loop_config *cfg, uint64_t *pictures, uint64_
 	return t->broken[0] ? -1 : 0;
 }
 
-/*
- * --after FILE: its lines run once the replay has ended (or reached
- * --until), each reply printed as "reply: JSON": what a replay test asks of
- * the state it reached. Blank and '#' lines are skipped.
- */
-static int
-run_after(struct loop *L, const char *path)
-{
-	FILE *f = fopen(path, "r");
-	if (!f) {
-		fprintf(stderr, "postured: %s: %s\n", path, strerror(errno));
-		return -1;
-	}
-	char line[4096];
-	while (fgets(line, sizeof line, f)) {
-		size_t len = strcspn(line, "\r\n");
-		line[len] = 0;
-		if (!len || line[0] == '#')
-			continue;
-		struct cmd_outcome out;
-		cmd_run(&L->d, DAEMON_CLIENT_JOURNAL, line, len, &out);
-		modes_sync(&L->modes);
-		printf("reply: %s\n", out.json ? out.json : "null");
-		free(out.json);
-	}
-	fclose(f);
-	return 0;
-}
-
 int
 loop_replay(const struct loop_config *cfg)
 {
@@ -166,7 +137,7 @@ loop_replay(const struct loop_config *cfg)
 	if (t->divergences)
 		fprintf(stderr, "postured: replay diverged first at frame %" PRIu64 ": %s\n",
 			t->first.frame, t->first.what);
-	if (cfg->after && run_after(L, cfg->after) < 0)
+	if (cfg->after && loop_queries(L, cfg->after) < 0)
 		rc = -1;
 	if (cfg->hash_frames)
 		printf("pictures: drawn=%" PRIu64 " hash=%016" PRIx64 "\n", npictures, pictures);

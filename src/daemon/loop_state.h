@@ -101,6 +101,13 @@ void loop_run_line(struct loop *L, int client, const char *line, size_t len);
  * the caller's to free */
 void loop_command(struct loop *L, int client, const char *line, size_t len,
 		  struct cmd_outcome *out);
+/*
+ * loop_frame.c: --after FILE: its lines run as the daemon's own (blank and
+ * '#' lines skipped), each reply printed as "reply: JSON" on standard
+ * output: what a replay test or a driven run asks of the state it reached.
+ * 0, or -1 when FILE cannot be read.
+ */
+int loop_queries(struct loop *L, const char *path);
 
 /* loop_attract.c: --attract DIR. Real input came (a device's event, a client's line that is
  * not a question): an attract under way ends, the state as it was */

@@ -18,4 +18,7 @@ char *statefile_read(const char *path, size_t *len);
  */
 int statefile_write(const char *path, const void *data, size_t len);
 
+/* all len bytes to fd, through short writes and EINTR: 0, or -1 with errno */
+int statefile_write_all(int fd, const void *data, size_t len);
+
 #endif

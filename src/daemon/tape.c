@@ -27,21 +27,6 @@ tape_real_now(void)
 }
 
 static int
-write_all(int fd, const char *p, size_t n)
-{
-	while (n) {
-		ssize_t w = write(fd, p, n);
-		if (w < 0 && errno == EINTR)
-			continue;
-		if (w <= 0)
-			return -1;
-		p += w;
-		n -= (size_t)w;
-	}
-	return 0;
-}
-
-static int
 pending(const struct tape *t)
 {
 	for (int i = 0; i < t->nout; i++)
@@ -74,7 +59,7 @@ writer_main(void *arg)
 		int bad = 0;
 		for (int i = 0; i < t->nout; i++) {
 			struct tape_out *o = &t->out[i];
-			if (o->wlen && o->fd >= 0 && write_all(o->fd, o->wbuf, o->wlen) < 0)
+			if (o->wlen && o->fd >= 0 && statefile_write_all(o->fd, o->wbuf, o->wlen) < 0)
 				bad = errno ? errno : EIO;
 			o->wlen = 0;
 		}

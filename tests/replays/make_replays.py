@@ -198,7 +198,7 @@ def kiosk_devices_daemon(extra, tmp):
     """The daemon of kiosk_devices: under umockdev, with evemu files written into tmp."""
     sys.path.insert(0, str(ROOT / "tests" / "system"))
     from test_input import kernel_codes
-    from test_kiosk_recorded import EVDEV, KEYBOARD, MOCK, MOUSE, UMOCKDEV_RUN, evemu, typing
+    from test_kiosk_recorded import typing, umockdev_daemon
     codes = kernel_codes()
     keys, t = [], 2.5
     for text in ("add view front width=320 height=240 eye=0.4,1.1,3.2 target=0,0.9,0",
@@ -211,15 +211,7 @@ def kiosk_devices_daemon(extra, tmp):
     mouse = [(drag_at, 1, codes["BTN_LEFT"], 1)]
     mouse += [(drag_at + 0.02 * (i + 1), 2, 0, -4) for i in range(30)]  # REL_X: to the left
     mouse += [(drag_at + 0.7, 1, codes["BTN_LEFT"], 0)]
-    (tmp / "keys.evemu").write_text(evemu(EVDEV / "keyboard.evemu", keys))
-    (tmp / "mouse.evemu").write_text(evemu(EVDEV / "mouse.evemu", mouse))
-    d = Daemon(fps=1000, extra=["--input", f"evdev:{MOUSE}", "--input", f"evdev:{KEYBOARD}"]
-               + extra)
-    d.argv = [UMOCKDEV_RUN, "-d", str(MOCK / "mouse.umockdev"), "-d", str(MOCK / "keyboard.umockdev"),
-              "-i", f"{MOUSE}={MOCK}/mouse.ioctl", "-i", f"{KEYBOARD}={MOCK}/keyboard.ioctl",
-              "-e", f"{MOUSE}={tmp}/mouse.evemu", "-e", f"{KEYBOARD}={tmp}/keys.evemu",
-              "--"] + d.argv
-    return d
+    return umockdev_daemon(tmp, keys, mouse, fps=1000, extra=extra)
 
 
 SESSIONS = {

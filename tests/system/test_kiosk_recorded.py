@@ -36,6 +36,20 @@ def evemu(template, events):
     return "\n".join(out) + "\n"
 
 
+def umockdev_daemon(tmp_path, keys, mouse, fps=None, extra=()):
+    """A daemon reading a keyboard and a mouse under umockdev, which replay the key and mouse
+    events (t seconds, type, code, value) as evemu files written into tmp_path."""
+    (tmp_path / "keys.evemu").write_text(evemu(EVDEV / "keyboard.evemu", keys))
+    (tmp_path / "mouse.evemu").write_text(evemu(EVDEV / "mouse.evemu", mouse))
+    d = Daemon(fps=fps, extra=("--input", f"evdev:{MOUSE}", "--input", f"evdev:{KEYBOARD}",
+                               *extra))
+    d.argv = [UMOCKDEV_RUN, "-d", str(MOCK / "mouse.umockdev"), "-d", str(MOCK / "keyboard.umockdev"),
+              "-i", f"{MOUSE}={MOCK}/mouse.ioctl", "-i", f"{KEYBOARD}={MOCK}/keyboard.ioctl",
+              "-e", f"{MOUSE}={tmp_path}/mouse.evemu", "-e", f"{KEYBOARD}={tmp_path}/keys.evemu",
+              "--"] + d.argv
+    return d
+
+
 def typing(text, start, codes):
     """the key events a US keyboard sends for text, 30 ms apart"""
     events, t = [], start
@@ -57,13 +71,7 @@ def test_a_recorded_keyboard_and_mouse_drive_the_kiosk(tmp_path):
     mouse = [(drag_at, 1, codes["BTN_LEFT"], 1)]
     mouse += [(drag_at + 0.02 * (i + 1), 2, 0, 4) for i in range(20)]  # REL_X, 80 counts
     mouse += [(drag_at + 0.5, 1, codes["BTN_LEFT"], 0)]
-    (tmp_path / "keys.evemu").write_text(evemu(EVDEV / "keyboard.evemu", keys))
-    (tmp_path / "mouse.evemu").write_text(evemu(EVDEV / "mouse.evemu", mouse))
-    d = Daemon(extra=("--input", f"evdev:{MOUSE}", "--input", f"evdev:{KEYBOARD}"))
-    d.argv = [UMOCKDEV_RUN, "-d", str(MOCK / "mouse.umockdev"), "-d", str(MOCK / "keyboard.umockdev"),
-              "-i", f"{MOUSE}={MOCK}/mouse.ioctl", "-i", f"{KEYBOARD}={MOCK}/keyboard.ioctl",
-              "-e", f"{MOUSE}={tmp_path}/mouse.evemu", "-e", f"{KEYBOARD}={tmp_path}/keys.evemu",
-              "--"] + d.argv
+    d = umockdev_daemon(tmp_path, keys, mouse)
     d.start()
     try:
         with d.client() as c:

@@ -5,16 +5,14 @@ log, and its replay feeds the same bytes through the same decoders to the same p
 
 The references: the evemu files umockdev played (the kernel's records, which must come out of
 the recording's device files in the same order), and the live daemon's posture hash."""
-import pathlib
 import re
 import subprocess
-import sys
 import time
 
 import pytest
 
-from daemon import POSTURED, ROOT, Daemon
-from test_kiosk_recorded import (EVDEV, KEYBOARD, MOCK, MOUSE, UMOCKDEV_RUN, evemu, typing)
+from daemon import POSTURED
+from test_kiosk_recorded import KEYBOARD, MOUSE, UMOCKDEV_RUN, typing, umockdev_daemon
 from test_input import kernel_codes
 
 pytestmark = pytest.mark.skipif(
@@ -46,15 +44,8 @@ def test_a_keyboard_and_mouse_read_directly_replay_through_their_decoders(tmp_pa
     mouse = [(drag_at, 1, codes["BTN_LEFT"], 1)]
     mouse += [(drag_at + 0.02 * (i + 1), 2, 0, 3) for i in range(25)]  # REL_X
     mouse += [(drag_at + 0.6, 1, codes["BTN_LEFT"], 0)]
-    (tmp_path / "keys.evemu").write_text(evemu(EVDEV / "keyboard.evemu", keys))
-    (tmp_path / "mouse.evemu").write_text(evemu(EVDEV / "mouse.evemu", mouse))
     rec = tmp_path / "rec"
-    d = Daemon(fps=1000, extra=("--input", f"evdev:{MOUSE}", "--input", f"evdev:{KEYBOARD}",
-                                "--record", str(rec)))
-    d.argv = [UMOCKDEV_RUN, "-d", str(MOCK / "mouse.umockdev"), "-d", str(MOCK / "keyboard.umockdev"),
-              "-i", f"{MOUSE}={MOCK}/mouse.ioctl", "-i", f"{KEYBOARD}={MOCK}/keyboard.ioctl",
-              "-e", f"{MOUSE}={tmp_path}/mouse.evemu", "-e", f"{KEYBOARD}={tmp_path}/keys.evemu",
-              "--"] + d.argv
+    d = umockdev_daemon(tmp_path, keys, mouse, fps=1000, extra=("--record", str(rec)))
     d.start()
     try:
         with d.client() as c:
