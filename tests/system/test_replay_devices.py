@@ -81,3 +81,58 @@ def test_a_keyboard_and_mouse_read_directly_replay_through_their_decoders(tmp_pa
     assert p.returncode == 0, p.stderr
     m = REPLAY_LINE.search(p.stdout)
     assert m and m[2] == live and m[3] == "0", (p.stdout, p.stderr)
+
+
+def test_a_hid_mouse_read_through_hidapi_is_recorded_as_hid_recorder_does(tmp_path):
+    """the hidraw backend recorded: its reports in a hid-recorder file that hid-tools' own
+    hid-decode reads (the reports the mock played, in order), and the replay's posture the
+    live one"""
+    import shutil
+    import sys as _sys
+    from daemon import ROOT, Daemon
+    _sys.path.insert(0, str(ROOT / "tests" / "input" / "hid"))
+    import hidmock
+    desc, name, ids, _ = hidmock.read_recording(ROOT / "tests" / "input" / "hid" /
+                                                "hidtools_mouse.hid")
+    reports = [bytes([1, 0, 0, 0])] + [bytes([1, 8, 0, 0])] * 12 + [bytes([0, 0, 0, 0])]
+    paths = hidmock.write_mock(tmp_path, desc, name, ids, reports, first_ms=3000, pace_ms=40)
+    rec = tmp_path / "rec"
+    d = Daemon(fps=1000, extra=("--input", "hidraw:%04x:%04x" % (ids[1], ids[2]),
+                                "--record", str(rec)))
+    d.argv = [UMOCKDEV_RUN] + hidmock.umockdev_args(paths) + ["--"] + d.argv
+    d.start()
+    try:
+        with d.client() as c:
+            c.request("add view front width=320 height=240 eye=0,1,3 target=0,1,0")
+            c.request("load human as hid")
+            c.request("manipulate figure hid")
+            deadline = time.monotonic() + 20
+            while time.monotonic() < deadline and not c.request("get kiosk")["step"]:
+                time.sleep(0.02)
+            while time.monotonic() < deadline and c.request("get kiosk")["step"]:
+                time.sleep(0.02)
+            time.sleep(0.2)
+            live = c.request("status")["posture"]
+    finally:
+        d.stop()
+        d.cleanup()
+    files = re.findall(r"^file (dev\d+\.hid) hid-recorder device", (rec / "manifest").read_text(),
+                       re.M)
+    assert len(files) == 1
+    text = (rec / files[0]).read_text()
+    got = [bytes(int(h, 16) for h in ln.split()[3:]) for ln in text.splitlines()
+           if ln.startswith("E: ")]
+    assert got == reports
+    decode = shutil.which("hid-decode", path=str(ROOT / ".venv" / "bin")) or shutil.which(
+        "hid-decode")
+    if decode:  # hid-tools' own parser reads the file's descriptor back, item by item
+        p = subprocess.run([decode, str(rec / files[0])], capture_output=True, text=True,
+                           timeout=60)
+        assert p.returncode == 0, p.stderr
+        assert "R: %d %s" % (len(desc), " ".join("%02x" % b for b in desc)) in p.stdout
+        assert "Usage (Wheel)" in p.stdout
+    p = subprocess.run([str(POSTURED), "--replay", str(rec)], capture_output=True, text=True,
+                       timeout=120)
+    assert p.returncode == 0, p.stderr
+    m = REPLAY_LINE.search(p.stdout)
+    assert m and m[2] == live and m[3] == "0", (p.stdout, p.stderr)
