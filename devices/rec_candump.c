@@ -238,6 +238,44 @@ rec_candump_read(const char *path, struct rec_candump *dest, char *err, size_t e
 	return rc;
 }
 
+size_t
+rec_candump_format(char *dest, size_t cap, const struct rec_candump_frame *f, int width,
+		   int nanoseconds)
+{
+	size_t n = 0;
+#define PUT(...) (n += (size_t)snprintf(dest + n, n < cap ? cap - n : 0, __VA_ARGS__))
+	unsigned long long sec = f->t_abs_us / 1000000, us = f->t_abs_us % 1000000;
+	if (nanoseconds)
+		PUT("(%010llu.%09llu) ", sec, us * 1000 + f->t_ns);
+	else
+		PUT("(%010llu.%06llu) ", sec, us);
+	PUT("%*s ", width, f->iface);
+	/* the id */
+	if (f->can_id & CAN_ERR_FLAG)
+		PUT("%08X#", f->can_id & (CAN_ERR_MASK | CAN_ERR_FLAG));
+	else if (f->can_id & CAN_EFF_FLAG)
+		PUT("%08X#", f->can_id & CAN_EFF_MASK);
+	else
+		PUT("%03X#", f->can_id & CAN_SFF_MASK);
+	/* remote request or data */
+	int len = f->len > 8 ? 8 : f->len;
+	if (f->can_id & CAN_RTR_FLAG) {
+		PUT("R");
+		if (len)
+			PUT("%d", len);
+	} else {
+		for (int k = 0; k < len; k++)
+			PUT("%02X", f->data[k]);
+	}
+	if (len == 8 && f->len8_dlc > 8 && f->len8_dlc <= 15)
+		PUT("_%X", f->len8_dlc);
+	if (f->dir)
+		PUT(" %c", f->dir);
+	PUT("\n");
+#undef PUT
+	return n;
+}
+
 int
 rec_candump_write(FILE *out, const struct rec_candump *r)
 {
@@ -248,35 +286,9 @@ rec_candump_write(FILE *out, const struct rec_candump *r)
 			width = w;
 	}
 	for (size_t i = 0; i < r->n; i++) {
-		const struct rec_candump_frame *f = &r->frames[i];
-		unsigned long long sec = f->t_abs_us / 1000000, us = f->t_abs_us % 1000000;
-		if (r->nanoseconds)
-			fprintf(out, "(%010llu.%09llu) ", sec, us * 1000 + f->t_ns);
-		else
-			fprintf(out, "(%010llu.%06llu) ", sec, us);
-		fprintf(out, "%*s ", width, f->iface);
-		/* the id */
-		if (f->can_id & CAN_ERR_FLAG)
-			fprintf(out, "%08X#", f->can_id & (CAN_ERR_MASK | CAN_ERR_FLAG));
-		else if (f->can_id & CAN_EFF_FLAG)
-			fprintf(out, "%08X#", f->can_id & CAN_EFF_MASK);
-		else
-			fprintf(out, "%03X#", f->can_id & CAN_SFF_MASK);
-		/* remote request or data */
-		int len = f->len > 8 ? 8 : f->len;
-		if (f->can_id & CAN_RTR_FLAG) {
-			fputc('R', out);
-			if (len)
-				fprintf(out, "%d", len);
-		} else {
-			for (int k = 0; k < len; k++)
-				fprintf(out, "%02X", f->data[k]);
-		}
-		if (len == 8 && f->len8_dlc > 8 && f->len8_dlc <= 15)
-			fprintf(out, "_%X", f->len8_dlc);
-		if (f->dir)
-			fprintf(out, " %c", f->dir);
-		fputc('\n', out);
+		char line[REC_CANDUMP_LINE_MAX];
+		size_t n = rec_candump_format(line, sizeof line, &r->frames[i], width, r->nanoseconds);
+		fwrite(line, 1, n < sizeof line ? n : sizeof line - 1, out);
 	}
 	return ferror(out) ? -1 : 0;
 }
@@ -286,6 +298,20 @@ rec_candump_free(struct rec_candump *r)
 {
 	free(r->frames);
 	memset(r, 0, sizeof *r);
+}
+
+void
+rec_candump_from_can_frame(const uint8_t frame[16], uint64_t t_us, const char *iface,
+			   struct rec_candump_frame *dest)
+{
+	memset(dest, 0, sizeof *dest);
+	memcpy(&dest->can_id, frame, sizeof dest->can_id);
+	dest->len = frame[4] > 8 ? 8 : frame[4];
+	dest->len8_dlc = frame[7];
+	if (!(dest->can_id & CAN_RTR_FLAG))
+		memcpy(dest->data, frame + 8, 8);
+	dest->t_abs_us = t_us;
+	snprintf(dest->iface, sizeof dest->iface, "%s", iface);
 }
 
 void

@@ -69,6 +69,20 @@ int rec_candump_read(const char *path, struct rec_candump *dest, char *err, size
  */
 int rec_candump_write(FILE *out, const struct rec_candump *r);
 
+/*
+ * One frame's line as rec_candump_write writes it (the interface name
+ * right-aligned to width, fractions of 9 digits when nanoseconds), into
+ * dest (cap bytes, NUL-terminated; REC_CANDUMP_LINE_MAX is always enough).
+ * Returns the line's length, newline included.
+ */
+#define REC_CANDUMP_LINE_MAX 96
+size_t rec_candump_format(char *dest, size_t cap, const struct rec_candump_frame *f, int width,
+			  int nanoseconds);
+
+/* a frame as a CAN_RAW socket reads it (struct can_frame), at t_us on iface, as a log's frame */
+void rec_candump_from_can_frame(const uint8_t frame[16], uint64_t t_us, const char *iface,
+				struct rec_candump_frame *dest);
+
 /* frees what rec_candump_parse or _read allocated and empties r */
 void rec_candump_free(struct rec_candump *r);
 

@@ -2,7 +2,6 @@
 #include "daemon/tape_dev.h"
 
 #include <inttypes.h>
-#include <linux/can.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -102,18 +101,11 @@ write_bytes(struct tape *t, int i, const uint8_t *b, size_t n, uint64_t t_us)
 		return 1;
 	}
 	/* candump -l: (seconds.micro) iface id#data */
-	struct can_frame fr;
-	memcpy(&fr, b, sizeof fr < n ? sizeof fr : n);
-	int eff = !!(fr.can_id & CAN_EFF_FLAG);
-	size_t m = (size_t)snprintf(line, sizeof line, "(%010" PRIu64 ".%06u) %s %0*X#",
-				    t_us / 1000000, (unsigned)(t_us % 1000000), t->dev_iface[i],
-				    eff ? 8 : 3, fr.can_id & (eff ? CAN_EFF_MASK : CAN_SFF_MASK));
-	if (fr.can_id & CAN_RTR_FLAG)
-		m += (size_t)snprintf(line + m, 8, "R");
-	else
-		for (int k = 0; k < fr.len && k < 8; k++)
-			m += (size_t)snprintf(line + m, 4, "%02X", fr.data[k]);
-	line[m++] = '\n';
+	struct rec_candump_frame fr;
+	uint8_t frame[16] = { 0 };
+	memcpy(frame, b, n < sizeof frame ? n : sizeof frame);
+	rec_candump_from_can_frame(frame, t_us, t->dev_iface[i], &fr);
+	size_t m = rec_candump_format(line, sizeof line, &fr, 0, 0);
 	tape_out_bytes(t, id, line, m);
 	return 1;
 }
