@@ -159,9 +159,11 @@ conn_line(struct conn *c, int ms)
 			c->len -= n + 1;
 			return line;
 		}
+		/* ms 0 still looks once: what the socket holds counts, not only what is buffered */
 		uint64_t now = now_us();
+		int wait = now >= end ? 0 : (int)((end - now) / 1000u) + 1;
 		struct pollfd p = { .fd = c->fd, .events = POLLIN };
-		if (now >= end || poll(&p, 1, (int)((end - now) / 1000u) + 1) <= 0)
+		if (poll(&p, 1, wait) <= 0)
 			return NULL;
 		if (c->cap - c->len < 65536) {
 			c->cap = c->cap ? c->cap * 2 : 1 << 17;
