@@ -469,6 +469,12 @@ check_turn(struct conn *c, int can, const struct panel_plan *p)
 	v = wait_elbow(c, p->want2, SETTLE_MS);
 	check(fabs(v - p->want2) <= EPS, "a second turn adds up", "elbow_r %.17g, want %.17g", v,
 	      p->want2);
+	/* the turn is a step: a client's undo now would take back the step before it */
+	json_t *early = request(c, "undo");
+	check(!early && strstr(last_error, "\"busy\""),
+	      "a client's undo while the dials turn is refused busy", "%s",
+	      early ? "it ran" : last_error);
+	json_decref(early);
 	sleep_ms(STILL_MS);
 	kiosk_field(c, "step", step, sizeof step);
 	long after = status_field(c, "undo");
