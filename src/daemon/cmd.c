@@ -150,7 +150,8 @@ busy_with_step(struct daemon *d, const struct cmd_entry *e, struct cmd_ctx *c)
 	if (!touches)
 		return 0;
 	snprintf(c->msg, sizeof c->msg,
-		 "the kiosk is moving %s (%s mode, a button held): %s waits until it comes up",
+		 "the kiosk is moving %s (%s mode, a button held or the dials turning): %s waits "
+		 "until the step ends",
 		 name, st->mode, whole ? "a change of the whole environment" : "a change to it");
 	return 1;
 }
