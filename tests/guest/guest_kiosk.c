@@ -475,6 +475,12 @@ check_turn(struct conn *c, int can, const struct panel_plan *p)
 	      "a client's undo while the dials turn is refused busy", "%s",
 	      early ? "it ran" : last_error);
 	json_decref(early);
+	/* ... and so does a change to the figure it turns, which undoing the turn took back */
+	early = request(c, "set joint human knee_l 30deg");
+	check(!early && strstr(last_error, "\"busy\""),
+	      "a client's change to the turned figure waits too (busy)", "%s",
+	      early ? "it ran" : last_error);
+	json_decref(early);
 	sleep_ms(STILL_MS);
 	kiosk_field(c, "step", step, sizeof step);
 	long after = status_field(c, "undo");

@@ -134,6 +134,7 @@ def test_the_dial_panel_on_vcan0_drives_the_daemon(tmp_path):
         "the dial turns the picked joint by the binding's gain",
         "a turning dial is a step under way", "a second turn adds up",
         "a client's undo while the dials turn is refused busy",
+        "a client's change to the turned figure waits too (busy)",
         "the dials still for 0.5 s end the step: one undo step", "undo returns the joint",
         "the panel button runs its command (undo)",
         "vcan0 down then up: the daemon runs on, the panel still listed",
