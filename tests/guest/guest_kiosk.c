@@ -46,7 +46,7 @@
 
 #define SOCK "/tmp/kiosk/sock"
 #define STATE "/tmp/kiosk/state"
-#define START_MS 90000   /* TCG: loading OSMesa and LLVM takes a while */
+#define START_MS 90000   /* generous: it listens 0.6-1.4 s after its start here (TCG) */
 #define SETTLE_MS 5000   /* how long a change may take to show through the socket */
 #define STILL_MS 800     /* longer than the dials' 0.5 s of stillness that ends a step */
 #define EPS 1e-9
