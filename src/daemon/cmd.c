@@ -124,22 +124,34 @@ names_figure(const struct env *e, const char *word, int fig)
  * way), a client's change to the figure it moves is refused, with the
  * kiosk's mode named, and so is any change of the whole environment
  * (undo, redo, a session loaded); reads, events and other figures go on.
+ * A step that names no figure (the dials turning, outside a mode) still
+ * ends as one undo, so the whole environment waits for it too: an undo in
+ * the middle took back the step before it and lost the turn.
  */
 static int
 busy_with_step(struct daemon *d, const struct cmd_entry *e, struct cmd_ctx *c)
 {
 	const struct daemon_step *st = &d->step;
-	if (!st->open || st->fig < 0 || st->fig >= ENV_MAX_FIGURES || d->env.fig[st->fig].gen != st->gen)
+	if (!st->open)
 		return 0;
-	const char *name = d->env.fig[st->fig].name;
 	int whole = e->fn == cmd_undo || e->fn == cmd_redo || e->fn == cmd_load_session;
+	if (st->fig < 0 || st->fig >= ENV_MAX_FIGURES || d->env.fig[st->fig].gen != st->gen) {
+		if (!whole)
+			return 0;
+		snprintf(c->msg, sizeof c->msg,
+			 "the kiosk is in a step (%s mode, the dials turning or a button held): a "
+			 "change of the whole environment waits until it ends", st->mode);
+		return 1;
+	}
+	const char *name = d->env.fig[st->fig].name;
 	int touches = whole;
 	for (int i = 0; i < c->argc && !touches; i++)
 		touches = names_figure(&d->env, c->argv[i], st->fig);
 	if (!touches)
 		return 0;
 	snprintf(c->msg, sizeof c->msg,
-		 "the kiosk is moving %s (%s mode, a button held): %s waits until it comes up",
+		 "the kiosk is moving %s (%s mode, a button held or the dials turning): %s waits "
+		 "until the step ends",
 		 name, st->mode, whole ? "a change of the whole environment" : "a change to it");
 	return 1;
 }

@@ -77,6 +77,16 @@ daemon_step_begin(struct daemon *d, int fig, const char *mode)
 	return 0;
 }
 
+void
+daemon_step_moves(struct daemon *d, int fig)
+{
+	struct daemon_step *st = &d->step;
+	if (!st->open || st->fig >= 0 || fig < 0 || fig >= ENV_MAX_FIGURES)
+		return;
+	st->fig = fig;
+	st->gen = d->env.fig[fig].gen;
+}
+
 static void
 step_close(struct daemon_step *st)
 {

@@ -188,6 +188,12 @@ int daemon_replace_env(struct daemon *d, const char *text, size_t len, char *err
  */
 int daemon_step_begin(struct daemon *d, int fig, const char *mode);
 /*
+ * The open step moves figure slot fig (occupied) when it names none yet,
+ * as a dial turn outside a mode learns only as it moves: the busy rule
+ * then guards that figure. Nothing when no step is open.
+ */
+void daemon_step_moves(struct daemon *d, int fig);
+/*
  * The open step ends: when it changed anything, the state before it is
  * pushed for undo and redo is forgotten (1); else nothing (0).
  */

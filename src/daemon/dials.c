@@ -50,6 +50,7 @@ move_dof(struct dials *D, int fig, int j, int k, double delta)
 		return 0;
 	f->state->q[dof] = v;
 	kin_update(m, f->state);
+	daemon_step_moves(D->M->d, fig); /* other clients' changes to it wait for the turn */
 	return 1;
 }
 
@@ -124,6 +125,7 @@ move_behavior(struct dials *D, int param, double delta)
 	struct env *e = &D->M->d->env;
 	struct env_figure *f = &e->fig[fig];
 	env_sync_solver(e, fig);
+	daemon_step_moves(D->M->d, fig);
 	if (param == DIAL_BEHAVIOR_ELEVATION) {
 		behave_move_com(f->behave, f->model, f->state, f->ik, 0, 0, delta);
 		return 1;

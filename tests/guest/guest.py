@@ -444,14 +444,17 @@ def _run_image(binary, args, files, exes, env):
             c.host_file(dest, src)
     done = set()
     for lib in sorted(libs):
-        # The guest has no usrmerge symlinks: put the real file under the
-        # name ldd printed (what the loader and the ELF interpreter ask
-        # for) and under its resolved name when that differs.
+        # The guest has no usrmerge symlinks: the real file goes under its
+        # resolved name, and the name ldd printed (what the loader and the
+        # ELF interpreter ask for) is a symlink to it when that differs.
+        # Once, not twice: postured's OSMesa and LLVM are about 200 MB.
         real = os.path.realpath(lib)
-        for dest in (lib, real):
-            if dest not in done:
-                done.add(dest)
-                c.host_file(dest, real, 0o755)
+        if real not in done:
+            done.add(real)
+            c.host_file(real, real, 0o755)
+        if lib not in done:
+            done.add(lib)
+            c.symlink(lib, real)
     cmd = []
     for k, v in env:
         cmd.append("export %s=%s" % (k, shlex.quote(v)))

@@ -43,19 +43,22 @@ def require_built(name):
         pytest.skip("kernel tier: %s is not built (make all)" % program(name))
 
 
-def run_program(name, modules, args=(), files=(), exes=(), timeout=240):
+def run_program(name, modules, args=(), files=(), exes=(), timeout=240, memory=512, env=()):
     """Runs the guest program NAME ($POSTURE_BUILD/guest/NAME; a pathlib.Path is run as
     it is) in the guest; returns (exit status, output lines). files are SRC[:DEST] and
-    exes host programs, as guest.py run takes them. A harness failure (exit 125) fails the
-    test with the guest's output."""
+    exes host programs, as guest.py run takes them; memory is the guest's, in MiB (the
+    daemon's OSMesa and LLVM need 2048); env holds K=V words for the program. A harness
+    failure (exit 125) fails the test with the guest's output."""
     exe = name if isinstance(name, pathlib.Path) else program(name)
     assert exe.exists(), "%s is not built (make all builds it)" % exe
     cmd = [sys.executable, str(HERE / "guest.py"), "run", "--modules", ",".join(modules),
-           "--timeout", str(timeout)]
+           "--timeout", str(timeout), "--memory", str(memory)]
     for f in files:
         cmd += ["--file", str(f)]
     for x in exes:
         cmd += ["--exe", str(x)]
+    for kv in env:
+        cmd += ["--env", kv]
     cmd += [str(exe), *map(str, args)]
     p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                        timeout=timeout + 60)

@@ -47,6 +47,35 @@ def test_the_dial_box_turns_the_picked_joint_and_a_turn_is_one_undo(daemon_facto
         assert c.request("get joint human elbow_r")["values"] == [0]
 
 
+def test_a_client_s_undo_waits_while_the_dials_turn(daemon_factory):
+    """The turn is a step outside a mode: an undo in the middle of it took back the step
+    before it (the view) and the turn was lost; a change to the figure it turns was taken
+    back with the turn. Both are refused busy now, and other figures go on."""
+    with daemon_factory(extra=PANEL).client() as c:
+        c.request("add view front width=320 height=240 eye=0,1,3 target=0,1,0")
+        c.request("load human as human")
+        c.request("load human as eve")
+        c.request("manipulate joint human elbow_r")
+        c.request("input key KEY_ESC down")
+        c.request("input key KEY_ESC up")
+        depth = c.request("status")["undo"]
+        c.request("input valuator Dials.Dial2 10")
+        c.request("input valuator Dials.Dial2 15")  # +5 degrees, the step under way
+        err = c.request_reply("undo")["error"]
+        assert err["code"] == "busy" and "dials" in err["message"], err
+        assert c.request_reply("redo")["error"]["code"] == "busy"
+        err = c.request_reply("set joint human knee_l 30deg")["error"]
+        assert err["code"] == "busy" and "human" in err["message"], err
+        c.request("set joint eve knee_l 30deg")  # another figure goes on
+        assert [v["name"] for v in c.request("list views")["views"]] == ["front"]
+        time.sleep(0.8)  # still: the turn is one step
+        c.request("get joint human elbow_r")
+        assert c.request("status")["undo"] == depth + 2  # eve's change, then the turn
+        c.request("undo")
+        assert c.request("get joint human elbow_r")["values"] == [0]
+        assert [v["name"] for v in c.request("list views")["views"]] == ["front"]
+
+
 def test_the_view_turns_and_zooms_on_its_dials(daemon_factory):
     with daemon_factory(extra=PANEL).client() as c:
         c.request("add view front width=320 height=240 eye=0,1,3 target=0,1,0")
