@@ -42,6 +42,7 @@ struct render {
 	OSMesaContext ctx;
 	uint8_t *buf; /* max_w x max_h RGBA, rows top to bottom (OSMESA_Y_UP = 0) */
 	int max_w, max_h, samples, shadows;
+	int surf_w, surf_h; /* the OSMesa surface now: the last frame's size (rows max_w apart) */
 	GLuint fbo, rb_color, rb_depth; /* the multisampled target, when samples > 0 */
 
 	GLuint prog_lit, prog_color, prog_floor, prog_text;
@@ -222,6 +223,8 @@ render_make(const struct render_def *d, char *err, size_t errlen)
 			     OSMESA_STENCIL_BITS, 8, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE,
 			     OSMESA_CONTEXT_MAJOR_VERSION, 2, OSMESA_CONTEXT_MINOR_VERSION, 1, 0 };
 	r->ctx = OSMesaCreateContextAttribs(attr, NULL);
+	r->surf_w = r->max_w;
+	r->surf_h = r->max_h;
 	if (!r->ctx || !OSMesaMakeCurrent(r->ctx, r->buf, GL_UNSIGNED_BYTE, r->max_w, r->max_h)) {
 		snprintf(err, errlen, "OSMesa: no %dx%d context", r->max_w, r->max_h);
 		goto fail;
@@ -415,15 +418,38 @@ to_eye(const float view[16], const float w[3], float dest[3])
 		dest[i] = view[i] * w[0] + view[4 + i] * w[1] + view[8 + i] * w[2];
 }
 
+/*
+ * The OSMesa surface made w x h, its rows max_w apart in buf: what OSMesa
+ * copies into buf at the frame's end is then the frame's pixels only (the
+ * whole max-size buffer before: 9 MB a frame, page faults and all).
+ */
+static void
+surface_size(struct render *r, int w, int h)
+{
+	if (r->surf_w == w && r->surf_h == h)
+		return;
+	OSMesaMakeCurrent(r->ctx, r->buf, GL_UNSIGNED_BYTE, w, h);
+	OSMesaPixelStore(OSMESA_ROW_LENGTH, r->max_w);
+	r->surf_w = w;
+	r->surf_h = h;
+}
+
 /* the packed arrays into their buffers */
 static void
 upload_packed(const struct render *r)
 {
 	const struct pack *p = &r->pack;
+	/*
+	 * A new store each frame, of the frame's size: updating the old one in
+	 * place made llvmpipe copy the whole (megabytes) store the last frame
+	 * still held, page faults and all, about a third of a frame's drawing.
+	 */
 	glBindBuffer(GL_ARRAY_BUFFER, r->pvbo);
-	glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof *p->pv * (size_t)p->nv), p->pv);
+	glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof *p->pv * (size_t)p->nv), p->pv,
+		     GL_STREAM_DRAW);
 	glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->pibo);
-	glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof *p->pi * (size_t)p->ni), p->pi);
+	glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof *p->pi * (size_t)p->ni), p->pi,
+		     GL_STREAM_DRAW);
 }
 
 /* draws classes c0..c1 of the packed instances (buffers bound) */
@@ -645,7 +671,8 @@ render_frame(struct render *r, const struct drawlist *dl, uint64_t t_us, struct 
 
 	/* the target: the top left w x h of the buffer, or of the multisampled one */
 	glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-	int y0 = r->fbo ? 0 : r->max_h - h;
+	surface_size(r, w, h);
+	int y0 = 0;
 	glViewport(0, y0, w, h);
 	glScissor(0, y0, w, h);
 	glEnable(GL_SCISSOR_TEST);
@@ -760,8 +787,7 @@ render_frame(struct render *r, const struct drawlist *dl, uint64_t t_us, struct 
 	if (r->fbo) {
 		glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
 		glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-		glBlitFramebuffer(0, 0, w, h, 0, r->max_h - h, w, r->max_h, GL_COLOR_BUFFER_BIT,
-				  GL_NEAREST);
+		glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 		glBindFramebuffer(GL_FRAMEBUFFER, 0);
 	}
 	glDisable(GL_SCISSOR_TEST);
