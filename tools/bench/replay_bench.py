@@ -37,8 +37,8 @@ sys.path.insert(0, str(ROOT / "tools"))
 from posture import Client  # noqa: E402
 
 SESSION_S = float(os.environ.get("REPLAY_BENCH_S", "60"))
-OVERHEAD_S = 8.0
-REPEATS = 5
+OVERHEAD_S = 6.0
+REPEATS = 9
 MOUSE_HZ = 125
 
 
@@ -132,9 +132,12 @@ def main():
                 dest.append((cpu / max(frames, 1) * 1e6, loop / max(frames, 1) * 1e6))
         a, b = [statistics.median(x[0] for x in v) for v in (rec_, live)]
         la, lb = [statistics.median(x[1] for x in v) for v in (rec_, live)]
+        # the spread: each recorded session against the plain one run just before it
+        pairs = sorted(100 * (r[1] - p[1]) / p[1] for r, p in zip(rec_, live))
         print("BENCH record.overhead loop_pct=%.1f pct=%.1f loop_us_frame_rec=%.0f "
-              "loop_us_frame_live=%.0f us_frame_rec=%.0f us_frame_live=%.0f repeats=%d" % (
-                  100 * (la - lb) / lb, 100 * (a - b) / b, la, lb, a, b, REPEATS), flush=True)
+              "loop_us_frame_live=%.0f us_frame_rec=%.0f us_frame_live=%.0f pairs_pct=%.1f..%.1f "
+              "repeats=%d" % (100 * (la - lb) / lb, 100 * (a - b) / b, la, lb, a, b, pairs[0],
+                              pairs[-1], REPEATS), flush=True)
 
 
 if __name__ == "__main__":
