@@ -12,8 +12,8 @@ WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototyp
 # libxkbcommon through pkg-config; before `make deps` has installed it, its plain name
 XKB_CFLAGS := $(shell pkg-config --cflags xkbcommon 2>/dev/null)
 XKB_LIBS := $(shell pkg-config --libs xkbcommon 2>/dev/null || echo -lxkbcommon)
-BASE    := -std=c11 -pthread -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -I/usr/include/libusb-1.0 $(XKB_CFLAGS) -MMD -MP
-LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -ludev -lhidapi-hidraw -lusb-1.0 $(XKB_LIBS) -lm
+BASE    := -std=c11 -pthread -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -I/usr/include/libusb-1.0 -I/usr/include/libdrm $(XKB_CFLAGS) -MMD -MP
+LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -ludev -lhidapi-hidraw -lusb-1.0 -ldrm $(XKB_LIBS) -lm
 TESTLIBS := -lcmocka -lnlopt
 # NLopt is the independent minimiser the IK tests and benchmarks compare against;
 # only tests and benchmarks link it
@@ -27,7 +27,7 @@ PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see README: Dependencies)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
 	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils \
-	libxkbcommon-dev xkb-data libx11-data
+	libxkbcommon-dev xkb-data libx11-data libdrm-dev
 # without their recommends: QEMU boots the kernel test tier's guest (tests/guest)
 DEB_PKGS_LEAN := qemu-system-x86
 

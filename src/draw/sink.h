@@ -106,6 +106,26 @@ int sink_fb_page(const struct sink *s);
 int sink_fb_size(const struct sink *s, int *w, int *h);
 
 /*
+ * A screen through DRM/KMS (sink_kms.c): on card (/dev/dri/cardN; NULL: the
+ * first card that can show something), the connector named (NULL or "":
+ * the first connected one) in mode ("WxH" or "WxH@HZ"; NULL or "": the
+ * preferred one); two XRGB8888 dumb buffers, the frame drawn centred into
+ * the one not shown, then a page flip; a frame that finds the last flip
+ * still pending after 100 ms is skipped (counted). On close the CRTC as it
+ * was is restored. Returns the sink, or NULL with why in err (which card,
+ * which step: no KMS, nothing connected, no such mode, not DRM master...).
+ */
+struct sink *sink_kms_open(const char *card, const char *connector, const char *mode, char *err,
+			   size_t errlen);
+/* the mode's size, and "CARD CONNECTOR WxH@HZ" */
+void sink_kms_info(const struct sink *s, int *w, int *h, char *desc, size_t desclen);
+/* the buffer shown now (XRGB8888, rows pitch apart), flips done and frames skipped: for tests */
+const uint8_t *sink_kms_front(const struct sink *s, uint32_t *pitch, uint64_t *flips,
+			      uint64_t *dropped);
+/* waits (100 ms at most) for the flip in flight: 0 when none is left */
+int sink_kms_settle(struct sink *s);
+
+/*
  * Keeps a copy of the latest frame for the daemon to send to clients. The
  * pixel buffer only grows, so frames no larger than one seen before cost no
  * allocation; the PNG is encoded on demand, once per frame.

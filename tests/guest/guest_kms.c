@@ -1,0 +1,182 @@
+/*
+ * guest_kms.c - the DRM/KMS sink (draw/sink_kms.c) on a real kernel: run in
+ * the test guest with QEMU's standard VGA (bochs-drm), module bochs.
+ *
+ *   guest_kms FRAMES
+ *
+ * The sink opens the first card, sets its preferred mode and flips FRAMES
+ * frames, each a different pattern; after each flip's event the pixels
+ * read back from the scanout buffer shown must equal the frame converted
+ * to XRGB8888 (computed here, not by the sink's converter). Closing puts
+ * back the CRTC's framebuffer as it was (the console's). Then the fbdev
+ * emulation on the same card: without overallocation its virtual height
+ * is the visible one, so the fbdev sink falls back to one buffer, and a
+ * frame written reads back from /dev/fb0 as drawn. Prints ok/FAIL lines;
+ * the exit status is the number of failures.
+ */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <fcntl.h>
+#include <linux/fb.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <xf86drm.h>
+#include <xf86drmMode.h>
+
+#include "draw/sink.h"
+#include "tests/guest/guest_check.h"
+
+/* frame k's pixel (x, y): every channel moves with k, x and y */
+static void
+pattern(uint8_t *rgba, int w, int h, int k)
+{
+	for (int y = 0; y < h; y++)
+		for (int x = 0; x < w; x++) {
+			uint8_t *p = rgba + ((size_t)y * (size_t)w + (size_t)x) * 4;
+			p[0] = (uint8_t)(x + 3 * k);
+			p[1] = (uint8_t)(y + 5 * k);
+			p[2] = (uint8_t)(x ^ y ^ k);
+			p[3] = 255;
+		}
+}
+
+/* the first pixel of the scanout that is not the frame's, or -1 */
+static long
+first_difference(const uint8_t *rgba, int w, int h, const uint8_t *scan, uint32_t pitch)
+{
+	for (int y = 0; y < h; y++)
+		for (int x = 0; x < w; x++) {
+			const uint8_t *p = rgba + ((size_t)y * (size_t)w + (size_t)x) * 4;
+			uint32_t want = 0xff000000u | (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
+			uint32_t got;
+			memcpy(&got, scan + (size_t)y * pitch + (size_t)x * 4, 4);
+			if (got != want)
+				return (long)y * w + x;
+		}
+	return -1;
+}
+
+/* the framebuffer id on the first CRTC that has one (what the console shows), 0: none */
+static uint32_t
+shown_fb(uint32_t *crtc_id)
+{
+	int fd = open("/dev/dri/card0", O_RDWR | O_CLOEXEC);
+	uint32_t fb = 0;
+	drmModeRes *res = fd >= 0 ? drmModeGetResources(fd) : NULL;
+	for (int i = 0; res && i < res->count_crtcs && !fb; i++) {
+		drmModeCrtc *c = drmModeGetCrtc(fd, res->crtcs[i]);
+		if (c && c->buffer_id) {
+			fb = c->buffer_id;
+			*crtc_id = c->crtc_id;
+		}
+		drmModeFreeCrtc(c);
+	}
+	drmModeFreeResources(res);
+	if (fd >= 0)
+		close(fd);
+	return fb;
+}
+
+static void
+kms(int frames)
+{
+	char err[512], desc[160];
+	uint32_t crtc_before = 0, fb_before = shown_fb(&crtc_before);
+	struct sink *s = sink_kms_open(NULL, NULL, NULL, err, sizeof err);
+	if (!s) {
+		fail("kms open", "%s", err);
+		return;
+	}
+	int w, h;
+	sink_kms_info(s, &w, &h, desc, sizeof desc);
+	ok("kms mode set: %s", desc);
+	uint8_t *rgba = malloc((size_t)w * (size_t)h * 4);
+	int wrong = 0;
+	uint64_t t0 = now_us();
+	for (int k = 0; k < frames && !wrong; k++) {
+		pattern(rgba, w, h, k);
+		struct frame f = { .width = w, .height = h, .stride = 4 * w, .rgba = rgba };
+		if (sink_write(s, &f, err, sizeof err) < 0 || sink_kms_settle(s) < 0) {
+			fail("kms flip", "frame %d: %s", k, err);
+			wrong = 1;
+			break;
+		}
+		uint32_t pitch;
+		uint64_t flips, dropped;
+		const uint8_t *scan = sink_kms_front(s, &pitch, &flips, &dropped);
+		long at = first_difference(rgba, w, h, scan, pitch);
+		if (at >= 0) {
+			fail("kms scanout", "frame %d differs at pixel %ld (x %ld, y %ld), pitch %u", k,
+			     at, at % w, at / w, pitch);
+			wrong = 1;
+		}
+	}
+	uint32_t pitch;
+	uint64_t flips, dropped;
+	sink_kms_front(s, &pitch, &flips, &dropped);
+	if (!wrong)
+		ok("kms %d frames flipped, each read back from the scanout equal (%llu flips, %llu "
+		   "skipped, pitch %u, %.2f ms a frame)", frames, (unsigned long long)flips,
+		   (unsigned long long)dropped, pitch, (double)(now_us() - t0) / 1000.0 / frames);
+	check(flips == (uint64_t)frames, "kms flip events", "%llu flips for %d frames",
+	      (unsigned long long)flips, frames);
+	sink_close(s);
+	free(rgba);
+	uint32_t crtc_after = 0, fb_after = shown_fb(&crtc_after);
+	check(fb_before && fb_after == fb_before, "kms crtc restored",
+	      "the console's framebuffer %u before, %u after", fb_before, fb_after);
+}
+
+static void
+fbdev(void)
+{
+	char err[512];
+	int fd = open("/dev/fb0", O_RDONLY | O_CLOEXEC);
+	struct fb_var_screeninfo var;
+	if (fd < 0 || ioctl(fd, FBIOGET_VSCREENINFO, &var) < 0) {
+		fail("fbdev", "/dev/fb0: %s", strerror(errno));
+		if (fd >= 0)
+			close(fd);
+		return;
+	}
+	close(fd);
+	ok("fbdev emulation %ux%u, virtual %ux%u", var.xres, var.yres, var.xres_virtual,
+	   var.yres_virtual);
+	struct sink *s = sink_fb_open("/dev/fb0", err, sizeof err);
+	if (!s) {
+		fail("fbdev open", "%s", err);
+		return;
+	}
+	int w = (int)var.xres, h = (int)var.yres;
+	uint8_t *rgba = malloc((size_t)w * (size_t)h * 4);
+	pattern(rgba, w, h, 7);
+	struct frame f = { .width = w, .height = h, .stride = 4 * w, .rgba = rgba };
+	int rc = sink_write(s, &f, err, sizeof err);
+	check(rc == 0, "fbdev single buffer write", "%s", rc ? err : "");
+	/* read back what the screen shows: the first yres rows (no pan: one buffer) */
+	fd = open("/dev/fb0", O_RDONLY | O_CLOEXEC);
+	size_t line = (size_t)var.xres_virtual * 4, n = line * (size_t)h;
+	uint8_t *shown = malloc(n);
+	ssize_t got = fd >= 0 ? pread(fd, shown, n, 0) : -1;
+	long at = got == (ssize_t)n ? first_difference(rgba, w, h, shown, (uint32_t)line) : -2;
+	check(at == -1, "fbdev read back", "read %zd of %zu bytes, first difference %ld", got, n, at);
+	if (fd >= 0)
+		close(fd);
+	free(shown);
+	free(rgba);
+	sink_close(s);
+}
+
+int
+main(int argc, char **argv)
+{
+	int frames = argc > 1 ? atoi(argv[1]) : 120;
+	kms(frames);
+	fbdev();
+	printf("guest_kms: %d failures\n", guest_status());
+	return guest_status();
+}

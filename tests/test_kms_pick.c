@@ -1,0 +1,137 @@
+/*
+ * test_kms_pick.c - the KMS sink's choices (draw/kms_pick.h) on plain
+ * structs: the connector, mode and CRTC a kiosk's card gives, what a
+ * setting asks for, and the two buffers' flips.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "draw/kms_pick.h"
+
+/* a card as QEMU's bochs and a laptop's show them: eDP (connected) and HDMI (not), two CRTCs */
+static void
+card(struct kms_resources *r)
+{
+	memset(r, 0, sizeof *r);
+	r->ncrtcs = 2;
+	r->crtcs[0] = 40;
+	r->crtcs[1] = 41;
+	r->nencoders = 2;
+	r->encoders[0] = (struct kms_encoder){ 50, 0, 0x3 };
+	r->encoders[1] = (struct kms_encoder){ 51, 0, 0x2 };
+	r->nconnectors = 2;
+	struct kms_connector *hdmi = &r->connectors[0], *edp = &r->connectors[1];
+	*hdmi = (struct kms_connector){ .id = 60, .name = "HDMI-A-1", .connected = 0,
+					.encoders = { 50 }, .nencoders = 1 };
+	*edp = (struct kms_connector){ .id = 61, .name = "eDP-1", .connected = 1,
+				       .encoders = { 51 }, .nencoders = 1, .nmodes = 3 };
+	edp->modes[0] = (struct kms_mode){ 1920, 1080, 60, 0 };
+	edp->modes[1] = (struct kms_mode){ 1280, 800, 75, 1 };
+	edp->modes[2] = (struct kms_mode){ 1280, 800, 60, 0 };
+}
+
+static void
+test_the_connected_connector_its_preferred_mode_and_a_crtc_it_can_drive(void **state)
+{
+	(void)state;
+	struct kms_resources r;
+	struct kms_want want = { .w = 0 };
+	struct kms_choice c;
+	char why[200];
+	card(&r);
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), 0);
+	assert_int_equal(c.connector, 1);
+	assert_int_equal(c.mode, 1);           /* the preferred one, not the first */
+	assert_int_equal(c.crtc, 41);          /* encoder 51 can drive CRTC index 1 only */
+	/* what the encoder drives now wins */
+	r.connectors[1].encoder = 51;
+	r.encoders[1].crtc = 41;
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), 0);
+	assert_int_equal(c.crtc, 41);
+	/* no preferred mode: the first (the kernel's best) */
+	r.connectors[1].modes[1].preferred = 0;
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), 0);
+	assert_int_equal(c.mode, 0);
+}
+
+static void
+test_what_a_setting_asks_for(void **state)
+{
+	(void)state;
+	struct kms_resources r;
+	struct kms_want want = { .w = 0 };
+	struct kms_choice c;
+	char why[200];
+	card(&r);
+	assert_int_equal(kms_parse_mode("1280x800@60", &want), 0);
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), 0);
+	assert_int_equal(c.mode, 2);
+	assert_int_equal(kms_parse_mode("1920x1080", &want), 0);
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), 0);
+	assert_int_equal(c.mode, 0);
+	assert_int_equal(kms_parse_mode("800x600", &want), 0);
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), -1);
+	assert_string_equal(why, "connector eDP-1 has no mode 800x600");
+	assert_int_equal(kms_parse_mode("", &want), 0);
+	strcpy(want.connector, "HDMI-A-1");
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), -1);
+	assert_string_equal(why, "connector HDMI-A-1 is not connected");
+	strcpy(want.connector, "DP-9");
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), -1);
+	assert_string_equal(why, "no connector DP-9");
+	const char *bad[] = { "1280", "1280x", "x800", "0x800", "1280x800@", "1280x800@0",
+			      "1280x800x", "1280x800@60hz", "99999x1" };
+	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
+		assert_int_equal(kms_parse_mode(bad[i], &want), -1);
+}
+
+static void
+test_nothing_connected_or_no_crtc_is_said(void **state)
+{
+	(void)state;
+	struct kms_resources r;
+	struct kms_want want = { .w = 0 };
+	struct kms_choice c;
+	char why[200];
+	card(&r);
+	r.connectors[1].connected = 0;
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), -1);
+	assert_string_equal(why, "no connector is connected");
+	card(&r);
+	r.encoders[1].possible_crtcs = 0;
+	assert_int_equal(kms_choose(&r, &want, &c, why, sizeof why), -1);
+	assert_string_equal(why, "no CRTC can drive connector eDP-1");
+}
+
+static void
+test_two_buffers_one_flip_in_flight(void **state)
+{
+	(void)state;
+	struct kms_flips f = { 0 };
+	assert_int_equal(kms_flips_back(&f), 1); /* buffer 0 is shown after the mode set */
+	kms_flips_asked(&f);
+	assert_int_equal(kms_flips_back(&f), -1); /* nothing to draw into until the event */
+	kms_flips_done(&f);
+	assert_int_equal(f.front, 1);
+	assert_int_equal(kms_flips_back(&f), 0);
+	kms_flips_done(&f); /* a stray event changes nothing */
+	assert_int_equal(f.front, 1);
+	assert_int_equal(f.flips, 1);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_the_connected_connector_its_preferred_mode_and_a_crtc_it_can_drive),
+		cmocka_unit_test(test_what_a_setting_asks_for),
+		cmocka_unit_test(test_nothing_connected_or_no_crtc_is_said),
+		cmocka_unit_test(test_two_buffers_one_flip_in_flight),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
