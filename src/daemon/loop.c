@@ -262,10 +262,11 @@ start_kiosk(struct loop *L, const struct loop_config *cfg)
 }
 
 /*
- * The framebuffer: a device (/dev/fbN), or file:PATH:WxH, an ordinary file
- * standing for the memory of a 32-bit XRGB framebuffer of that size (for
- * the benchmarks and tests, which have no device). Its size is the
- * kiosk's screen unless --screen gave one.
+ * The kiosk's screen (--display, --fb): auto (KMS, else /dev/fb0, saying
+ * which and why), kms[:CARD[:CONNECTOR[:MODE]]], fbdev:/dev/fbN or a device
+ * path, or file:PATH:WxH, an ordinary file standing for the memory of a
+ * 32-bit XRGB framebuffer of that size (for the benchmarks and tests, which
+ * have no device). Its size is the kiosk's screen unless --screen gave one.
  */
 static struct sink *
 open_fb(const char *spec, struct loop *L, char *err, size_t errlen)
@@ -293,8 +294,38 @@ open_fb(const char *spec, struct loop *L, char *err, size_t errlen)
 						 .smem_len = 4u * (unsigned)w * (unsigned)h,
 						 .visual = FB_VISUAL_TRUECOLOR };
 		s = sink_fb_open_file(path, &var, &fix, err, errlen);
+	} else if (!strcmp(spec, "auto")) {
+		/* KMS first (page flips, no tearing), else the fbdev emulation or driver */
+		char kerr[300];
+		if ((s = sink_kms_open(NULL, NULL, NULL, kerr, sizeof kerr))) {
+			char desc[160];
+			sink_kms_info(s, &w, &h, desc, sizeof desc);
+			fprintf(stderr, "postured: display: KMS, %s\n", desc);
+		} else if ((s = sink_fb_open("/dev/fb0", err, errlen))) {
+			sink_fb_size(s, &w, &h);
+			fprintf(stderr, "postured: display: fbdev /dev/fb0 (no KMS: %s)\n", kerr);
+		} else {
+			char ferr[300];
+			snprintf(ferr, sizeof ferr, "%s", err);
+			snprintf(err, errlen, "no KMS (%.200s) and no fbdev (%.200s)", kerr, ferr);
+		}
+	} else if (!strncmp(spec, "kms", 3) && (!spec[3] || spec[3] == ':')) {
+		/* kms[:CARD[:CONNECTOR[:MODE]]] */
+		char f[3][128] = { "", "", "" }; /* card, connector, mode: each may be empty */
+		const char *p = spec[3] ? spec + 4 : "";
+		for (int k = 0; k < 3 && *p; k++) {
+			size_t n = strcspn(p, k < 2 ? ":" : "");
+			snprintf(f[k], sizeof f[k], "%.*s", (int)(n < 127 ? n : 127), p);
+			p += n + (p[n] == ':');
+		}
+		const char *card = f[0], *conn = f[1], *mode = f[2];
+		if ((s = sink_kms_open(card[0] ? card : NULL, conn, mode, err, errlen))) {
+			char desc[160];
+			sink_kms_info(s, &w, &h, desc, sizeof desc);
+			fprintf(stderr, "postured: display: KMS, %s\n", desc);
+		}
 	} else {
-		s = sink_fb_open(spec, err, errlen);
+		s = sink_fb_open(!strncmp(spec, "fbdev:", 6) ? spec + 6 : spec, err, errlen);
 		if (s)
 			sink_fb_size(s, &w, &h);
 	}

@@ -27,9 +27,11 @@ static const char usage[] =
 	"                     $XDG_STATE_HOME/posture, else ~/.local/state/posture)\n"
 	"  --frames DIR       where rendered frames go, one DIR/VIEW.png per view,\n"
 	"                     replaced atomically at most 10 times a second (default: none)\n"
-	"  --fb DEVICE        show the kiosk's screen (the first view, or the layout's views) on\n"
-	"                     a Linux framebuffer (/dev/fbN), or file:PATH:WxH (a file standing\n"
-	"                     for its memory)\n"
+	"  --display SPEC     show the kiosk's screen (the first view, or the layout's views):\n"
+	"                     auto (DRM/KMS, else /dev/fb0; says which and why),\n"
+	"                     kms[:CARD[:CONNECTOR[:MODE]]] (e.g. kms:/dev/dri/card0:HDMI-A-1:1920x1080),\n"
+	"                     fbdev:/dev/fbN, or file:PATH:WxH (a file standing for fbdev memory)\n"
+	"  --fb DEVICE        the same as --display (a framebuffer device or file:PATH:WxH)\n"
 	"  --fps N            frame rate of the loop (default 60)\n"
 	"  --tcp PORT         also listen on 127.0.0.1:PORT (needs --token)\n"
 	"  --token TOKEN      the token TCP clients must send first (auth TOKEN)\n"
@@ -106,7 +108,7 @@ set(struct settings *s, const char *key, const char *val)
 		snprintf(s->state_dir, sizeof s->state_dir, "%s", val);
 	else if (!strcmp(key, "frames"))
 		snprintf(s->frames, sizeof s->frames, "%s", val);
-	else if (!strcmp(key, "fb"))
+	else if (!strcmp(key, "fb") || !strcmp(key, "display"))
 		snprintf(s->fb, sizeof s->fb, "%s", val);
 	else if (!strcmp(key, "library"))
 		snprintf(s->library, sizeof s->library, "%s", val);
