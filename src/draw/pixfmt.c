@@ -105,6 +105,10 @@ pixfmt_init(struct pixfmt *pf, char *err, size_t errlen)
 	uint32_t all = pf->bpp == 32 ? 0xffffffffu : (1u << pf->bpp) - 1;
 	pf->bytes = pf->bpp / 8;
 	pf->pad = all & ~used;
+	pf->xrgb = pf->bpp == 32 && pf->red.offset == 16 && pf->red.length == 8 &&
+		   pf->green.offset == 8 && pf->green.length == 8 && pf->blue.offset == 0 &&
+		   pf->blue.length == 8 && (pf->transp.length == 0 ||
+					    (pf->transp.offset == 24 && pf->transp.length == 8));
 	for (int c = 0; c < 4; c++) {
 		for (uint32_t v = 0; v < 256; v++) {
 			if (f[c]->length == 0)
@@ -199,6 +203,15 @@ pixfmt_convert_row(const struct pixfmt *pf, const uint8_t *rgba, int n, uint8_t 
 		}
 		break;
 	case 4:
+		if (pf->xrgb) { /* the usual screen format: bytes moved, no tables (vectorises) */
+			uint32_t alpha = pf->transp.length ? 0 : pad;
+			for (int i = 0; i < n; i++, rgba += 4, dest += 4) {
+				uint32_t v = (uint32_t)rgba[0] << 16 | (uint32_t)rgba[1] << 8 | rgba[2] |
+					     (pf->transp.length ? (uint32_t)rgba[3] << 24 : alpha);
+				memcpy(dest, &v, 4); /* little-endian, as the tables' path stores it */
+			}
+			break;
+		}
 		for (int i = 0; i < n; i++, rgba += 4, dest += 4) {
 			uint32_t v = lut[0][rgba[0]] | lut[1][rgba[1]] | lut[2][rgba[2]] |
 				     lut[3][rgba[3]] | pad;

@@ -68,6 +68,7 @@ struct pixfmt {
 	int bytes;	       /* bpp / 8 */
 	uint32_t pad;	       /* bits no field covers, always written as 1 */
 	uint32_t lut[4][256];  /* R, G, B, A 8-bit value -> its bits in place */
+	int xrgb;              /* 32-bit, red, green, blue in bytes 2, 1, 0: converted without tables */
 };
 
 /*

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "draw/pixfmt.h"
+#include "draw/scanout.h"
 
 #define SINK_FB_SIDE_MAX 65536 /* xres, yres and their virtual sizes */
 
@@ -44,40 +45,13 @@ struct sink_fb {
 	char *name;		      /* device or file path, for messages */
 };
 
-/* fills n pixels at dest with the pixel of b bytes at px */
-static void
-sink_fb_fill(uint8_t *dest, int n, const uint8_t *px, int b)
-{
-	for (int i = 0; i < n; i++, dest += b)
-		memcpy(dest, px, (size_t)b);
-}
-
 /* draws f centred and cropped into the xres x yres area whose top row is top */
 static void
 sink_fb_draw(struct sink_fb *fb, const struct frame *f, int top)
 {
-	int b = fb->pf.bytes;
-	int cw = f->width < fb->xres ? f->width : fb->xres;
-	int ch = f->height < fb->yres ? f->height : fb->yres;
-	int sx = (f->width - cw) / 2, sy = (f->height - ch) / 2; /* first frame pixel shown */
-	int dx = (fb->xres - cw) / 2, dy = (fb->yres - ch) / 2; /* where it lands */
-
-	for (int y = 0; y < fb->yres; y++) {
-		uint8_t *row = fb->mem + (size_t)(top + y) * fb->line_length +
-			       (size_t)fb->xoffset * b;
-
-		/* black above and below the frame */
-		if (y < dy || y >= dy + ch) {
-			sink_fb_fill(row, fb->xres, fb->black, b);
-			continue;
-		}
-
-		/* black left, the frame's row, black right */
-		const uint8_t *src = f->rgba + (size_t)(sy + y - dy) * f->stride + (size_t)sx * 4;
-		sink_fb_fill(row, dx, fb->black, b);
-		pixfmt_convert_row(&fb->pf, src, cw, row + (size_t)dx * b);
-		sink_fb_fill(row + (size_t)(dx + cw) * b, fb->xres - dx - cw, fb->black, b);
-	}
+	scanout_draw(&fb->pf, fb->black, f,
+		     fb->mem + (size_t)top * fb->line_length + (size_t)fb->xoffset * (size_t)fb->pf.bytes,
+		     fb->line_length, fb->xres, fb->yres);
 }
 
 /* shows page p: FBIOPAN_DISPLAY on a device, bookkeeping only on a file. 0 or -1 */

@@ -27,6 +27,7 @@
 
 #include "draw/kms_pick.h"
 #include "draw/pixfmt.h"
+#include "draw/scanout.h"
 
 #define SINK_KMS_FLIP_WAIT_MS 100 /* a flip's event this late: the frame is dropped */
 
@@ -47,6 +48,7 @@ struct sink_kms {
 	struct kms_flips flips;
 	drmModeCrtc *saved;   /* the CRTC as it was, put back on close */
 	struct pixfmt pf;     /* XRGB8888 */
+	uint8_t black[4];     /* an opaque black pixel in it */
 	char conn_name[KMS_NAME_MAX];
 };
 
@@ -162,26 +164,6 @@ wait_flip(struct sink_kms *k, int ms)
 	return 0;
 }
 
-/* f centred and cropped into buffer b, black around it */
-static void
-draw(struct sink_kms *k, const struct frame *f, struct kms_buffer *b)
-{
-	int cw = f->width < k->w ? f->width : k->w, ch = f->height < k->h ? f->height : k->h;
-	int sx = (f->width - cw) / 2, sy = (f->height - ch) / 2;
-	int dx = (k->w - cw) / 2, dy = (k->h - ch) / 2;
-	for (int y = 0; y < k->h; y++) {
-		uint8_t *row = b->map + (size_t)y * b->pitch;
-		if (y < dy || y >= dy + ch) {
-			memset(row, 0, (size_t)k->w * 4);
-			continue;
-		}
-		memset(row, 0, (size_t)dx * 4);
-		pixfmt_convert_row(&k->pf, f->rgba + (size_t)(sy + y - dy) * f->stride + (size_t)sx * 4,
-				   cw, row + (size_t)dx * 4);
-		memset(row + (size_t)(dx + cw) * 4, 0, (size_t)(k->w - dx - cw) * 4);
-	}
-}
-
 static int
 sink_kms_write(struct sink *s, const struct frame *f, char *err, size_t errlen)
 {
@@ -191,7 +173,7 @@ sink_kms_write(struct sink *s, const struct frame *f, char *err, size_t errlen)
 		return 0;
 	}
 	int back = kms_flips_back(&k->flips);
-	draw(k, f, &k->buf[back]);
+	scanout_draw(&k->pf, k->black, f, k->buf[back].map, k->buf[back].pitch, k->w, k->h);
 	if (drmModePageFlip(k->fd, k->crtc, k->buf[back].fb, DRM_MODE_PAGE_FLIP_EVENT, k) < 0) {
 		snprintf(err, errlen, "%s: page flip: %s", k->card, strerror(errno));
 		return -1;
@@ -241,7 +223,10 @@ open_card(const char *card, const struct kms_want *want, char *err, size_t errle
 		free(k);
 		return NULL;
 	}
-	if (pixfmt_init(&k->pf, why, sizeof why) < 0 || drmGetCap(k->fd, DRM_CAP_DUMB_BUFFER, &dumb) < 0 ||
+	static const uint8_t opaque_black[4] = { 0, 0, 0, 255 };
+	if (pixfmt_init(&k->pf, why, sizeof why) == 0)
+		pixfmt_convert_row(&k->pf, opaque_black, 1, k->black);
+	if (k->pf.bytes != 4 || drmGetCap(k->fd, DRM_CAP_DUMB_BUFFER, &dumb) < 0 ||
 	    !dumb) {
 		snprintf(err, errlen, "%s: no dumb buffers (not a KMS device?)", card);
 		goto fail;
