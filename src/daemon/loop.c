@@ -2,6 +2,7 @@
 #include "daemon/loop.h"
 
 #include "daemon/loop_state.h"
+#include "daemon/vt.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -371,10 +372,36 @@ open_signals(void)
 	sigemptyset(&set);
 	sigaddset(&set, SIGTERM);
 	sigaddset(&set, SIGINT);
+	sigaddset(&set, VT_SIG_RELEASE); /* the kiosk's VT switching away, and back (vt.h) */
+	sigaddset(&set, VT_SIG_ACQUIRE);
 	signal(SIGPIPE, SIG_IGN);
 	if (sigprocmask(SIG_BLOCK, &set, NULL) < 0)
 		return -1;
 	return signalfd(-1, &set, SFD_NONBLOCK | SFD_CLOEXEC);
+}
+
+/*
+ * The signals: SIGTERM and SIGINT stop the loop; the VT's switch away
+ * (the screen given up, then agreed to) and back (agreed, then the screen
+ * taken back and drawn whole).
+ */
+static void
+take_signals(struct loop *L)
+{
+	struct signalfd_siginfo si;
+	while (read(L->sig_fd, &si, sizeof si) == (ssize_t)sizeof si) {
+		if (si.ssi_signo == VT_SIG_RELEASE && L->vt.fd >= 0) {
+			scene_hold_screen(&L->scene, 1);
+			vt_release(&L->vt);
+			fprintf(stderr, "postured: VT switched away: not drawing\n");
+		} else if (si.ssi_signo == VT_SIG_ACQUIRE && L->vt.fd >= 0) {
+			vt_acquire(&L->vt);
+			scene_hold_screen(&L->scene, 0);
+			fprintf(stderr, "postured: VT back: drawing\n");
+		} else if (si.ssi_signo == SIGTERM || si.ssi_signo == SIGINT) {
+			L->stop = 1;
+		}
+	}
 }
 
 /* systemd's watchdog, fed at half its period; returns ms to the next feed, -1: none */
@@ -516,6 +543,7 @@ loop_setup(struct loop *L, const struct loop_config *cfg)
 	char err[512];
 	L->cfg = cfg;
 	L->j.fd = -1;
+	L->vt.fd = -1;
 	L->sig_fd = -1;
 	env_init(&L->d.env);
 	snprintf(L->d.state_dir, sizeof L->d.state_dir, "%s", cfg->state_dir);
@@ -612,6 +640,11 @@ loop_run(const struct loop_config *cfg)
 		fprintf(stderr, "postured: signals: %s\n", strerror(errno));
 		goto out;
 	}
+	/* the kiosk's VT, once its signals are the loop's to read */
+	if (cfg->vt && vt_take(&L->vt, cfg->vt, err, sizeof err) < 0) {
+		fprintf(stderr, "postured: VT: %s\n", err);
+		goto out;
+	}
 	L->watchdog_us = notify_watchdog_usec();
 	L->fps_t0 = loop_real_now();
 	notify_send("READY=1");
@@ -655,7 +688,7 @@ loop_run(const struct loop_config *cfg)
 					loop_attract_input(L, NULL, 0);
 			}
 			else if (owner[k] == -3)
-				L->stop = 1;
+				take_signals(L);
 			else if (owner[k] == -4)
 				devices_arrived(L);
 			else if (owner[k] < 0)
@@ -716,6 +749,7 @@ out:
 void
 loop_teardown(struct loop *L)
 {
+	vt_give_back(&L->vt); /* text mode and the keyboard, as they were */
 	server_close(&L->srv);
 	journal_close(&L->j);
 	env_clear(&L->d.env);

@@ -25,6 +25,7 @@ struct loop_config {
 	const char *bindings;      /* the dial panel's bindings file (interact/dial_bind.h), NULL: none */
 	int screen_w, screen_h;    /* the kiosk's screen; 0: the framebuffer's, else 1280x720 */
 	const char *record_dir;    /* record from the start into this folder (daemon/tape.h); NULL: no */
+	const char *vt;            /* the kiosk's VT (/dev/ttyN; "" standard input); NULL: none */
 	const char *attract_dir;   /* the attract mode's recording; NULL: none */
 	double attract_after;      /* ... played after this many seconds without input */
 	const char *replay_dir;    /* loop_replay's recording */

@@ -18,6 +18,7 @@
 #include "daemon/server.h"
 #include "daemon/tape.h"
 #include "daemon/tape_loop.h"
+#include "daemon/vt.h"
 #include "devices/escape_chord.h"
 #include "devices/hotplug.h"
 #include "devices/input_devs.h"
@@ -63,6 +64,7 @@ struct loop {
 	struct modes modes;         /* the interactive modes the input drives, and their views */
 	struct scene scene;   /* the views' pictures */
 	struct tape tape;     /* a recording being made, or the one being replayed */
+	struct vt vt;         /* the kiosk's VT, when the daemon owns one (fd -1: none) */
 	/* the attract mode (loop_attract.c): a recording replayed while nobody is at the kiosk */
 	struct {
 		int on;

@@ -14,6 +14,7 @@
 #include "daemon/loop.h"
 #include "daemon/loop_drive.h"
 #include "daemon/loop_replay.h"
+#include "daemon/vt.h"
 
 static const char usage[] =
 	"usage: postured [OPTIONS]\n"
@@ -60,6 +61,10 @@ static const char usage[] =
 	"                     virtual clock, frame after frame as fast as it goes, then --after's\n"
 	"                     queries; prints 'drive: frames=N virtual_s=S posture=HASH'; the\n"
 	"                     state directory and journal as live, no socket or devices\n"
+	"  --vt TTY           the kiosk's VT (/dev/ttyN, or stdin: the unit's TTYPath=): graphics\n"
+	"                     mode, its keyboard off, VT switches handled (the screen given up\n"
+	"                     and taken back); put back as it was on exit\n"
+	"  --vt-restore TTY   make TTY a usable text console again (after a crash) and exit\n"
 	"  --attract DIR      the attract mode: the recording DIR replayed in a loop while nobody\n"
 	"                     is at the kiosk; the first real input ends it, the state as it was\n"
 	"  --attract-after S  seconds without input before it starts (default 60)\n"
@@ -85,6 +90,8 @@ struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];
 	char fb[PATH_MAX], panel[PATH_MAX], token[128], hotplug[16], keymap[128], bindings[PATH_MAX];
 	char record[PATH_MAX], replay[PATH_MAX], after[PATH_MAX], attract[PATH_MAX], drive[PATH_MAX];
+	char vt[64];
+	int vt_given;
 	double attract_after;
 	double speed;
 	unsigned long long until;
@@ -163,6 +170,9 @@ set(struct settings *s, const char *key, const char *val)
 		}
 		s->screen_w = w;
 		s->screen_h = h;
+	} else if (!strcmp(key, "vt")) {
+		snprintf(s->vt, sizeof s->vt, "%s", strcmp(val, "stdin") ? val : "");
+		s->vt_given = 1;
 	} else if (!strcmp(key, "drive")) {
 		snprintf(s->drive, sizeof s->drive, "%s", val);
 	} else if (!strcmp(key, "attract")) {
@@ -367,6 +377,14 @@ main(int argc, char **argv)
 			fputs(usage, stdout);
 			return 0;
 		}
+		if (!strcmp(a, "--vt-restore") && i + 1 < argc) { /* after a crash: a usable console */
+			char err[300];
+			if (vt_restore_console(argv[i + 1], err, sizeof err) < 0) {
+				fprintf(stderr, "postured: %s\n", err);
+				return 1;
+			}
+			return 0;
+		}
 		if (!strcmp(a, "--protocol-table")) {
 			cmd_print_table(stdout);
 			return 0;
@@ -406,6 +424,7 @@ main(int argc, char **argv)
 		.record_dir = s.record[0] ? s.record : NULL,
 		.attract_dir = s.attract[0] ? s.attract : NULL, .attract_after = s.attract_after,
 		.drive_file = s.drive[0] ? s.drive : NULL, .after = s.after[0] ? s.after : NULL,
+		.vt = s.vt_given ? s.vt : NULL,
 	};
 	if (cfg.drive_file) { /* nothing but the script comes in */
 		static const char *const none[] = { "none" };

@@ -3,6 +3,7 @@
 
 #include "interact/menu_draw.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -353,6 +354,8 @@ static void
 scene_to_screen(struct scene *sc, const struct env_view *vw, const struct frame *f)
 {
 	char err[256];
+	if (sc->screen_held)
+		return;
 	if (!sc->screen) {
 		if (!scene_writer(sc, &sc->screen, 0))
 			return;
@@ -641,6 +644,20 @@ scene_sync(struct scene *sc, struct daemon *d, struct events *E)
 		frame_writer_stats(sc->screen, &b);
 	d->stats.frames_written = a.written + b.written;
 	d->stats.frames_dropped = a.dropped + b.dropped;
+}
+
+void
+scene_hold_screen(struct scene *sc, int held)
+{
+	struct sink *s = sc->screen ? frame_writer_sink(sc->screen, 0) : sc->fb;
+	sc->screen_held = held;
+	if (held && sc->screen)
+		frame_writer_flush(sc->screen); /* the last frame written before master goes */
+	if (s && !strcmp(s->ops->name, "kms") && sink_kms_master(s, !held) < 0)
+		fprintf(stderr, "postured: screen: DRM master %s: %s\n", held ? "not dropped" : "not taken",
+			strerror(errno));
+	if (!held)
+		sc->dirty = 1;
 }
 
 void

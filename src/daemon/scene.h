@@ -49,6 +49,7 @@ struct scene {
 	char png_name[ENV_MAX_VIEWS][MODEL_NAME_MAX]; /* the file slot v writes; "": none yet */
 	struct sink *fb;             /* the first view goes here too, when set; then the screen's */
 	struct frame_writer *screen; /* writes fb; made when needed */
+	int screen_held;             /* the VT is switched away: nothing drawn to the screen */
 	/* the kiosk's screen with the layout's views tiled on it, composed for fb */
 	uint8_t *screen_rgba;
 	int screen_w, screen_h;
@@ -78,6 +79,12 @@ void scene_init(struct scene *sc, const char *frames_dir);
 int scene_latencies(struct scene *sc, uint64_t *dest, int max);
 
 void scene_free(struct scene *sc);
+/*
+ * The screen given up (held 1: the VT switched away; frames wait, a KMS
+ * screen's DRM master dropped once the last frame is written) or taken back
+ * (held 0: master taken again, the next frame drawn whole).
+ */
+void scene_hold_screen(struct scene *sc, int held);
 
 /*
  * Draws view v of d's environment; *dest stays valid until the next

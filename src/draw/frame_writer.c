@@ -381,6 +381,17 @@ frame_writer_stats(struct frame_writer *w, struct frame_writer_stats *dest)
 	dest->failed = atomic_load(&w->failed);
 }
 
+struct sink *
+frame_writer_sink(struct frame_writer *w, int slot)
+{
+	if (slot < 0 || slot >= FRAME_WRITER_SLOTS)
+		return NULL;
+	pthread_mutex_lock(&w->lock);
+	struct sink *s = w->slot[slot].sink;
+	pthread_mutex_unlock(&w->lock);
+	return s;
+}
+
 void
 frame_writer_flush(struct frame_writer *w)
 {

@@ -85,6 +85,9 @@ void frame_writer_stats(struct frame_writer *w, struct frame_writer_stats *dest)
  */
 int frame_writer_latencies(struct frame_writer *w, uint64_t *dest, int max);
 
+/* the sink of slot (NULL: none); the writer owns it: for the caller's questions, not writes */
+struct sink *frame_writer_sink(struct frame_writer *w, int slot);
+
 /* waits until every frame submitted so far is written or has failed (tests, shutdown) */
 void frame_writer_flush(struct frame_writer *w);
 

@@ -122,6 +122,8 @@ void sink_kms_info(const struct sink *s, int *w, int *h, char *desc, size_t desc
 /* the buffer shown now (XRGB8888, rows pitch apart), flips done and frames skipped: for tests */
 const uint8_t *sink_kms_front(const struct sink *s, uint32_t *pitch, uint64_t *flips,
 			      uint64_t *dropped);
+/* DRM master given up (on 0: the VT switched away) or taken back (on 1): 0, or -1 (errno) */
+int sink_kms_master(struct sink *s, int on);
 /* waits (100 ms at most) for the flip in flight: 0 when none is left */
 int sink_kms_settle(struct sink *s);
 

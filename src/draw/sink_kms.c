@@ -318,3 +318,18 @@ sink_kms_settle(struct sink *s)
 {
 	return wait_flip((struct sink_kms *)s, SINK_KMS_FLIP_WAIT_MS);
 }
+
+int
+sink_kms_master(struct sink *s, int on)
+{
+	struct sink_kms *k = (struct sink_kms *)s;
+	if (on) {
+		if (drmSetMaster(k->fd) < 0)
+			return -1;
+		/* the mode again: whoever held the screen meanwhile set their own */
+		return drmModeSetCrtc(k->fd, k->crtc, k->buf[k->flips.front].fb, 0, 0, &k->connector, 1,
+				      &k->mode);
+	}
+	wait_flip(k, SINK_KMS_FLIP_WAIT_MS);
+	return drmDropMaster(k->fd);
+}
