@@ -9,7 +9,7 @@
 #define HOTPLUG_READ_MAX 64 /* events one call takes: a storm cannot hold the loop */
 
 /* the subsystems whose arrivals can be a device some spec names */
-static const char *const hotplug_subsystems[] = { "input", "hidraw", "usb", "net" };
+static const char *const hotplug_subsystems[] = { "input", "hidraw", "usb", "net", "drm" };
 
 int
 hotplug_open(struct hotplug *h, const char *source, char *err, size_t errlen)
@@ -83,7 +83,12 @@ hotplug_read(struct hotplug *h)
 		struct udev_device *d = udev_monitor_receive_device(h->mon);
 		if (!d)
 			break; /* nothing more now (the fd is non-blocking) */
-		if (hotplug_of_interest(d)) {
+		const char *sub = udev_device_get_subsystem(d), *action = udev_device_get_action(d);
+		const char *plug = udev_device_get_property_value(d, "HOTPLUG");
+		if (sub && !strcmp(sub, "drm") && action && !strcmp(action, "change") && plug &&
+		    !strcmp(plug, "1")) {
+			h->screens++; /* a screen plugged or unplugged: the display probes again */
+		} else if (hotplug_of_interest(d)) {
 			arrived++;
 			h->arrivals++;
 		} else {

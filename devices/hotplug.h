@@ -27,6 +27,7 @@ struct hotplug {
 	int fd;             /* -1 when closed */
 	uint64_t arrivals;  /* add events of interest seen */
 	uint64_t other;     /* every other event read */
+	uint64_t screens;   /* DRM connector changes (a "change" with HOTPLUG=1) */
 };
 
 /* opens a monitor on source "udev" or "kernel": 0, or -1 with err (h closed) */

@@ -512,7 +512,15 @@ open_devices(struct loop *L, const struct loop_config *cfg, char *err, size_t er
 static void
 devices_arrived(struct loop *L)
 {
-	if (hotplug_read(&L->hotplug) <= 0)
+	uint64_t screens = L->hotplug.screens;
+	int arrived = hotplug_read(&L->hotplug);
+	int w, h;
+	if (L->hotplug.screens != screens && scene_reprobe_screen(&L->scene, &w, &h) > 0 &&
+	    !L->screen_given) { /* the kiosk's screen is the new mode's */
+		L->d.screen_w = w;
+		L->d.screen_h = h;
+	}
+	if (arrived <= 0)
 		return;
 	if (input_devs_rescan(&L->devs, loop_real_now()) > 0)
 		announce_devices(L);
@@ -601,6 +609,11 @@ loop_setup(struct loop *L, const struct loop_config *cfg)
 		fprintf(stderr, "postured: framebuffer %s: %s\n", cfg->fb_device, err);
 		return -1;
 	}
+	/* a KMS screen follows its connectors: the hot-plug monitor, even with no device read */
+	const char *source = cfg->hotplug ? cfg->hotplug : "udev";
+	if (L->scene.fb && !strcmp(L->scene.fb->ops->name, "kms") && L->hotplug.fd < 0 &&
+	    strcmp(source, "none") && hotplug_open(&L->hotplug, source, err, sizeof err) < 0)
+		fprintf(stderr, "postured: no hot-plug (the screen is probed only at start): %s\n", err);
 	return 0;
 }
 

@@ -660,6 +660,27 @@ scene_hold_screen(struct scene *sc, int held)
 		sc->dirty = 1;
 }
 
+int
+scene_reprobe_screen(struct scene *sc, int *w, int *h)
+{
+	struct sink *s = sc->screen ? frame_writer_sink(sc->screen, 0) : sc->fb;
+	char err[300], desc[160];
+	if (!s || strcmp(s->ops->name, "kms"))
+		return 0;
+	if (sc->screen)
+		frame_writer_flush(sc->screen); /* the writer idle while the sink changes */
+	int rc = sink_kms_reprobe(s, err, sizeof err);
+	if (rc < 0) {
+		fprintf(stderr, "postured: screen: %s\n", err);
+		return -1;
+	}
+	sink_kms_info(s, w, h, desc, sizeof desc);
+	if (rc > 0)
+		fprintf(stderr, "postured: screen: now %s\n", desc);
+	sc->dirty = 1;
+	return rc;
+}
+
 void
 scene_free(struct scene *sc)
 {

@@ -85,6 +85,12 @@ void scene_free(struct scene *sc);
  * (held 0: master taken again, the next frame drawn whole).
  */
 void scene_hold_screen(struct scene *sc, int held);
+/*
+ * A KMS screen's connectors read again (a hot-plug): 1 when it now shows
+ * another mode or connector (its size in w, h), 0 when as before or not a
+ * KMS screen, -1 when none can show (said on stderr).
+ */
+int scene_reprobe_screen(struct scene *sc, int *w, int *h);
 
 /*
  * Draws view v of d's environment; *dest stays valid until the next

@@ -124,6 +124,13 @@ const uint8_t *sink_kms_front(const struct sink *s, uint32_t *pitch, uint64_t *f
 			      uint64_t *dropped);
 /* DRM master given up (on 0: the VT switched away) or taken back (on 1): 0, or -1 (errno) */
 int sink_kms_master(struct sink *s, int on);
+/*
+ * The card's connectors read again (a hot-plug): the screen chosen anew as
+ * at open; 0 when it is what shows already, 1 when the mode was set anew
+ * (on another connector, or another size: new buffers), -1 with err (then
+ * nothing shows until a later re-probe finds a screen).
+ */
+int sink_kms_reprobe(struct sink *s, char *err, size_t errlen);
 /* waits (100 ms at most) for the flip in flight: 0 when none is left */
 int sink_kms_settle(struct sink *s);
 

@@ -50,6 +50,7 @@ struct sink_kms {
 	struct pixfmt pf;     /* XRGB8888 */
 	uint8_t black[4];     /* an opaque black pixel in it */
 	char conn_name[KMS_NAME_MAX];
+	struct kms_want want; /* what was asked for: chosen again when the connectors change */
 };
 
 static const char *const connector_type[] = {
@@ -201,14 +202,64 @@ sink_kms_close(struct sink *s)
 
 static const struct sink_ops sink_kms_ops = { "kms", sink_kms_write, sink_kms_close };
 
+/*
+ * The connector, mode and CRTC chosen from what the card has now; when
+ * they are not what shows already, the buffers made for the mode's size
+ * (again when it changed) and the mode set on the first. 0 when nothing
+ * changed, 1 when the mode was set, -1 with err.
+ */
+static int
+configure(struct sink_kms *k, char *err, size_t errlen)
+{
+	static struct kms_resources r; /* large: not on the writer's or loop's stack */
+	static drmModeModeInfo modes[KMS_MAX][KMS_MAX_MODES];
+	struct kms_choice ch;
+	char why[200];
+	const char *card = k->card;
+	if (read_resources(k->fd, &r, modes) < 0) {
+		snprintf(err, errlen, "%s: no KMS resources: %s", card, strerror(errno));
+		return -1;
+	}
+	if (kms_choose(&r, &k->want, &ch, why, sizeof why) < 0) {
+		snprintf(err, errlen, "%s: %s", card, why);
+		return -1;
+	}
+	int same = k->connector == r.connectors[ch.connector].id && k->crtc == ch.crtc &&
+		   !memcmp(&k->mode, &modes[ch.connector][ch.mode], sizeof k->mode);
+	if (same && k->buf[0].map)
+		return 0; /* what shows now is still what to show */
+	k->connector = r.connectors[ch.connector].id;
+	k->crtc = ch.crtc;
+	k->mode = modes[ch.connector][ch.mode];
+	if (k->w != k->mode.hdisplay || k->h != k->mode.vdisplay) /* buffers of the new size */
+		for (int i = 0; i < 2; i++)
+			free_buffer(k->fd, &k->buf[i]);
+	k->w = k->mode.hdisplay;
+	k->h = k->mode.vdisplay;
+	snprintf(k->conn_name, sizeof k->conn_name, "%s", r.connectors[ch.connector].name);
+	if (!k->saved)
+		k->saved = drmModeGetCrtc(k->fd, k->crtc);
+	for (int i = 0; i < 2; i++)
+		if (!k->buf[i].map && make_buffer(k->fd, k->w, k->h, &k->buf[i]) < 0) {
+			snprintf(err, errlen, "%s: dumb buffer %dx%d: %s", card, k->w, k->h,
+				 strerror(errno));
+			return -1;
+		}
+	if (drmModeSetCrtc(k->fd, k->crtc, k->buf[0].fb, 0, 0, &k->connector, 1, &k->mode) < 0) {
+		snprintf(err, errlen, "%s: setting %dx%d on %s: %s", card, k->w, k->h, k->conn_name,
+			 strerror(errno));
+		return -1;
+	}
+	k->flips.front = 0;
+	k->flips.in_flight = 0;
+	return 1;
+}
+
 /* card: its connector, mode and CRTC chosen, two buffers, the mode set; NULL with err */
 static struct sink *
 open_card(const char *card, const struct kms_want *want, char *err, size_t errlen)
 {
 	struct sink_kms *k = calloc(1, sizeof *k);
-	static struct kms_resources r; /* large: not on the writer's or loop's stack */
-	static drmModeModeInfo modes[KMS_MAX][KMS_MAX_MODES];
-	struct kms_choice ch;
 	char why[200];
 	uint64_t dumb = 0;
 	if (!k) {
@@ -231,32 +282,9 @@ open_card(const char *card, const struct kms_want *want, char *err, size_t errle
 		snprintf(err, errlen, "%s: no dumb buffers (not a KMS device?)", card);
 		goto fail;
 	}
-	if (read_resources(k->fd, &r, modes) < 0) {
-		snprintf(err, errlen, "%s: no KMS resources: %s", card, strerror(errno));
+	k->want = *want;
+	if (configure(k, err, errlen) < 0)
 		goto fail;
-	}
-	if (kms_choose(&r, want, &ch, why, sizeof why) < 0) {
-		snprintf(err, errlen, "%s: %s", card, why);
-		goto fail;
-	}
-	k->connector = r.connectors[ch.connector].id;
-	k->crtc = ch.crtc;
-	k->mode = modes[ch.connector][ch.mode];
-	k->w = k->mode.hdisplay;
-	k->h = k->mode.vdisplay;
-	snprintf(k->conn_name, sizeof k->conn_name, "%s", r.connectors[ch.connector].name);
-	k->saved = drmModeGetCrtc(k->fd, k->crtc);
-	for (int i = 0; i < 2; i++)
-		if (make_buffer(k->fd, k->w, k->h, &k->buf[i]) < 0) {
-			snprintf(err, errlen, "%s: dumb buffer %dx%d: %s", card, k->w, k->h,
-				 strerror(errno));
-			goto fail;
-		}
-	if (drmModeSetCrtc(k->fd, k->crtc, k->buf[0].fb, 0, 0, &k->connector, 1, &k->mode) < 0) {
-		snprintf(err, errlen, "%s: setting %dx%d on %s: %s", card, k->w, k->h, k->conn_name,
-			 strerror(errno));
-		goto fail;
-	}
 	return &k->base;
 fail:
 	if (k->saved)
@@ -332,4 +360,12 @@ sink_kms_master(struct sink *s, int on)
 	}
 	wait_flip(k, SINK_KMS_FLIP_WAIT_MS);
 	return drmDropMaster(k->fd);
+}
+
+int
+sink_kms_reprobe(struct sink *s, char *err, size_t errlen)
+{
+	struct sink_kms *k = (struct sink_kms *)s;
+	wait_flip(k, SINK_KMS_FLIP_WAIT_MS);
+	return configure(k, err, errlen);
 }

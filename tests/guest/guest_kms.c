@@ -124,6 +124,20 @@ kms(int frames)
 		   (unsigned long long)dropped, pitch, (double)(now_us() - t0) / 1000.0 / frames);
 	check(flips == (uint64_t)frames, "kms flip events", "%llu flips for %d frames",
 	      (unsigned long long)flips, frames);
+	/* a connector re-probe (what a hot-plug event asks for), the kernel made to probe first */
+	FILE *detect = fopen("/sys/class/drm/card0-Virtual-1/status", "w");
+	if (detect) {
+		fputs("detect", detect);
+		fclose(detect);
+	}
+	int re = sink_kms_reprobe(s, err, sizeof err);
+	pattern(rgba, w, h, 500);
+	struct frame f = { .width = w, .height = h, .stride = 4 * w, .rgba = rgba };
+	int wrote = sink_write(s, &f, err, sizeof err) == 0 && sink_kms_settle(s) == 0;
+	const uint8_t *scan = sink_kms_front(s, &pitch, &flips, &dropped);
+	check(re == 0 && wrote && first_difference(rgba, w, h, scan, pitch) < 0,
+	      "kms re-probe keeps the screen", "re-probe %d (%s), write %d", re, re < 0 ? err : "",
+	      wrote);
 	sink_close(s);
 	free(rgba);
 	uint32_t crtc_after = 0, fb_after = shown_fb(&crtc_after);
