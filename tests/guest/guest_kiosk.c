@@ -43,6 +43,7 @@
 #include <jansson.h>
 
 #include "tests/guest/guest_check.h"
+#include "tests/guest/guest_daemon.h"
 
 #define SOCK "/tmp/kiosk/sock"
 #define STATE "/tmp/kiosk/state"
@@ -50,192 +51,6 @@
 #define SETTLE_MS 5000   /* how long a change may take to show through the socket */
 #define STILL_MS 800     /* longer than the dials' 0.5 s of stillness that ends a step */
 #define EPS 1e-9
-
-/* ---- the daemon ---- */
-
-static pid_t daemon_pid = -1;
-
-/* forks and runs argv (stdout and stderr stay on the console): 0, or -1 */
-static int
-daemon_start(char *const argv[])
-{
-	fflush(stdout);
-	pid_t pid = fork();
-	if (pid < 0)
-		return -1;
-	if (pid == 0) {
-		execv(argv[0], argv);
-		fprintf(stderr, "exec %s: %s\n", argv[0], strerror(errno));
-		_exit(127);
-	}
-	daemon_pid = pid;
-	return 0;
-}
-
-/* 1 while the daemon runs; its end said once */
-static int
-daemon_alive(void)
-{
-	if (daemon_pid < 0)
-		return 0;
-	int st;
-	pid_t r = waitpid(daemon_pid, &st, WNOHANG);
-	if (r == 0)
-		return 1;
-	if (r == daemon_pid) {
-		if (WIFSIGNALED(st))
-			printf("postured died of signal %d\n", WTERMSIG(st));
-		else
-			printf("postured exited with status %d\n", WEXITSTATUS(st));
-	}
-	daemon_pid = -1;
-	return 0;
-}
-
-/* SIGTERM, then its exit status (-1: a signal or not running) */
-static int
-daemon_stop(void)
-{
-	if (!daemon_alive())
-		return -1;
-	kill(daemon_pid, SIGTERM);
-	int st;
-	if (waitpid(daemon_pid, &st, 0) != daemon_pid)
-		return -1;
-	daemon_pid = -1;
-	return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-/* ---- a client of the line protocol ---- */
-
-struct conn {
-	int fd;
-	char *buf;   /* bytes read and not yet taken as lines */
-	size_t len, cap;
-};
-
-static char last_error[512]; /* the last request's failure, for FAIL lines */
-
-/* connects to the daemon's socket, waiting up to ms for it: 0, or -1 */
-static int
-conn_open(struct conn *c, int ms)
-{
-	memset(c, 0, sizeof *c);
-	struct sockaddr_un a = { .sun_family = AF_UNIX };
-	snprintf(a.sun_path, sizeof a.sun_path, "%s", SOCK);
-	uint64_t end = now_us() + (uint64_t)ms * 1000u;
-	do {
-		c->fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-		if (c->fd >= 0 && connect(c->fd, (struct sockaddr *)&a, sizeof a) == 0)
-			return 0;
-		close(c->fd);
-		c->fd = -1;
-		sleep_ms(50);
-	} while (now_us() < end && daemon_alive());
-	return -1;
-}
-
-static void
-conn_close(struct conn *c)
-{
-	if (c->fd >= 0)
-		close(c->fd);
-	free(c->buf);
-	memset(c, 0, sizeof *c);
-	c->fd = -1;
-}
-
-/* the next line (malloc'ed, without its newline), waiting up to ms; NULL: none or EOF */
-static char *
-conn_line(struct conn *c, int ms)
-{
-	uint64_t end = now_us() + (uint64_t)ms * 1000u;
-	for (;;) {
-		char *nl = c->len ? memchr(c->buf, '\n', c->len) : NULL;
-		if (nl) {
-			size_t n = (size_t)(nl - c->buf);
-			char *line = strndup(c->buf, n);
-			memmove(c->buf, nl + 1, c->len - n - 1);
-			c->len -= n + 1;
-			return line;
-		}
-		/* ms 0 still looks once: what the socket holds counts, not only what is buffered */
-		uint64_t now = now_us();
-		int wait = now >= end ? 0 : (int)((end - now) / 1000u) + 1;
-		struct pollfd p = { .fd = c->fd, .events = POLLIN };
-		if (poll(&p, 1, wait) <= 0)
-			return NULL;
-		if (c->cap - c->len < 65536) {
-			c->cap = c->cap ? c->cap * 2 : 1 << 17;
-			c->buf = realloc(c->buf, c->cap);
-		}
-		ssize_t r = read(c->fd, c->buf + c->len, c->cap - c->len);
-		if (r <= 0)
-			return NULL;
-		c->len += (size_t)r;
-	}
-}
-
-/*
- * One request and its reply (events before it are skipped): the reply's
- * result (the caller's to json_decref), or NULL with last_error set.
- */
-static json_t *
-request(struct conn *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-
-static json_t *
-request(struct conn *c, const char *fmt, ...)
-{
-	char line[1024];
-	va_list ap;
-	va_start(ap, fmt);
-	int n = vsnprintf(line, sizeof line - 1, fmt, ap);
-	va_end(ap);
-	line[n++] = '\n';
-	if (write(c->fd, line, (size_t)n) != n) {
-		snprintf(last_error, sizeof last_error, "write: %s", strerror(errno));
-		return NULL;
-	}
-	for (;;) {
-		char *text = conn_line(c, 20000);
-		if (!text) {
-			snprintf(last_error, sizeof last_error, "no reply to '%.*s'", n - 1, line);
-			return NULL;
-		}
-		json_t *reply = json_loads(text, 0, NULL);
-		free(text);
-		if (!reply || json_object_get(reply, "event")) {
-			json_decref(reply);
-			continue;
-		}
-		json_t *result = json_incref(json_object_get(reply, "result"));
-		if (!json_is_true(json_object_get(reply, "ok")) || !result) {
-			char *why = json_dumps(json_object_get(reply, "error"), JSON_COMPACT);
-			snprintf(last_error, sizeof last_error, "'%.*s': %s", n - 1, line,
-				 why ? why : "?");
-			free(why);
-			json_decref(result);
-			result = NULL;
-		}
-		json_decref(reply);
-		return result;
-	}
-}
-
-/* a request whose reply does not matter beyond success: 0, or -1 (said) */
-static int
-command(struct conn *c, const char *line)
-{
-	json_t *r = request(c, "%s", line);
-	if (!r) {
-		printf("command failed: %s\n", last_error);
-		return -1;
-	}
-	json_decref(r);
-	return 0;
-}
-
-/* ---- what the daemon says ---- */
 
 /* DOF 0 of FIG's JOINT, or NAN (last_error says why) */
 static double
@@ -272,16 +87,7 @@ wait_figure(struct conn *c, const char *fig, int ms)
 	return 1;
 }
 
-/* an integer field of `status` (undo, redo ...), or -1 */
-static long
-status_field(struct conn *c, const char *key)
-{
-	json_t *r = request(c, "status");
-	long v = r && json_is_integer(json_object_get(r, key)) ?
-			 (long)json_integer_value(json_object_get(r, key)) : -1;
-	json_decref(r);
-	return v;
-}
+
 
 /* `get kiosk`'s KEY as text (a string, or JSON for anything else) into out */
 static void
@@ -797,6 +603,7 @@ main(int argc, char **argv)
 		st = run_can(argv + 1);
 	else if (argc == 3 && !strcmp(argv[1], "keyboard"))
 		st = run_keyboard(argv + 1);
+
 	else {
 		fprintf(stderr, "usage: guest_kiosk can POSTURED MAP BINDINGS ID REF TURN1 TURN2 "
 				"PRESS WANT1 WANT2\n       guest_kiosk keyboard POSTURED\n");

@@ -1,0 +1,146 @@
+/*
+ * guest_screen.c - the real daemon on the machine's screen, inside the
+ * test guest with QEMU's standard VGA (module bochs: bochs-drm, fbcon on
+ * tty1):
+ *
+ *   guest_screen POSTURED INIT
+ *
+ * postured --display auto --vt /dev/tty1 --init INIT: auto takes KMS; the
+ * frames written to the screen are what the CRTC shows (not the console's
+ * framebuffer; the kiosk's picture, many colours); tty1 is in graphics mode
+ * while it runs; on SIGTERM it exits 0, tty1 is in text mode again and the
+ * console's framebuffer is back on the CRTC. ok/FAIL lines; the exit status
+ * is the number of failures.
+ */
+#define _GNU_SOURCE
+#include <linux/kd.h>
+#include <sys/ioctl.h>
+#include <sys/mman.h>
+
+#include <xf86drm.h>
+#include <xf86drmMode.h>
+
+#define SOCK "/tmp/screen/sock"
+#define STATE "/tmp/screen/state"
+#define START_MS 90000 /* generous: TCG */
+
+#include "tests/guest/guest_daemon.h"
+
+/* the framebuffer on the first CRTC that shows one, and that CRTC's id; 0: none */
+static uint32_t
+crtc_fb(int fd, uint32_t *crtc)
+{
+	uint32_t fb = 0;
+	drmModeRes *res = drmModeGetResources(fd);
+	for (int i = 0; res && i < res->count_crtcs && !fb; i++) {
+		drmModeCrtc *c = drmModeGetCrtc(fd, res->crtcs[i]);
+		if (c && c->buffer_id) {
+			fb = c->buffer_id;
+			*crtc = c->crtc_id;
+		}
+		drmModeFreeCrtc(c);
+	}
+	drmModeFreeResources(res);
+	return fb;
+}
+
+/* the pixels the screen shows (root may map another's buffer): distinct colours among a sample */
+static int
+screen_colours(int fd, uint32_t fb_id, long *lit)
+{
+	drmModeFBPtr fb = drmModeGetFB(fd, fb_id);
+	struct drm_mode_map_dumb map = { .handle = fb ? fb->handle : 0 };
+	if (!fb || drmIoctl(fd, DRM_IOCTL_MODE_MAP_DUMB, &map) < 0) {
+		drmModeFreeFB(fb);
+		return -1;
+	}
+	size_t size = (size_t)fb->pitch * fb->height;
+	uint8_t *p = mmap(NULL, size, PROT_READ, MAP_SHARED, fd, (off_t)map.offset);
+	int distinct = 0;
+	uint32_t seen[64];
+	*lit = 0;
+	for (uint32_t y = 0; p != MAP_FAILED && y < fb->height; y += 7)
+		for (uint32_t x = 0; x < fb->width; x += 7) {
+			uint32_t v;
+			memcpy(&v, p + (size_t)y * fb->pitch + (size_t)x * 4, 4);
+			v &= 0xffffff;
+			*lit += v != 0;
+			int k = 0;
+			while (k < distinct && seen[k] != v)
+				k++;
+			if (k == distinct && distinct < 64)
+				seen[distinct++] = v;
+		}
+	if (p != MAP_FAILED)
+		munmap(p, size);
+	drmModeFreeFB(fb);
+	return distinct;
+}
+
+static int
+kd_mode(const char *tty)
+{
+	int fd = open(tty, O_RDWR | O_NOCTTY | O_CLOEXEC), mode = -1;
+	if (fd >= 0) {
+		ioctl(fd, KDGETMODE, &mode);
+		close(fd);
+	}
+	return mode;
+}
+
+/* the daemon on the machine's screen: KMS chosen by auto, the human drawn, the console back after */
+static int
+run_screen(char **argv)
+{
+	/* the card opened only to look: its first opener is DRM master, which the daemon must be */
+	int card = open("/dev/dri/card0", O_RDWR | O_CLOEXEC);
+	uint32_t crtc = 0, console = card >= 0 ? crtc_fb(card, &crtc) : 0;
+	check(console != 0, "the console shows on a CRTC", "no framebuffer on any CRTC");
+	if (card >= 0)
+		close(card);
+	char *const args[] = { argv[1], "--socket", SOCK, "--state-dir", STATE, "--input", "none",
+			       "--hotplug", "none", "--display", "auto", "--vt", "/dev/tty1",
+			       "--init", argv[2], NULL };
+	struct conn c;
+	if (daemon_start(args) < 0 || conn_open(&c, START_MS) < 0) {
+		fail("postured started", "no socket after %d ms", START_MS);
+		return guest_status();
+	}
+	long written = 0;
+	for (int k = 0; k < 300 && written < 1; k++, sleep_ms(50))
+		written = status_field(&c, "frames_written");
+	check(written >= 1, "frames written to the screen", "%ld after 15 s", written);
+	sleep_ms(500); /* the flip's event */
+	card = open("/dev/dri/card0", O_RDWR | O_CLOEXEC);
+	uint32_t shown = crtc_fb(card, &crtc);
+	long lit = 0;
+	int colours = shown && shown != console ? screen_colours(card, shown, &lit) : -1;
+	check(shown && shown != console && colours >= 16 && lit > 1000,
+	      "the screen shows the kiosk's picture (KMS)",
+	      "framebuffer %u (the console's %u), %d colours, %ld lit samples", shown, console,
+	      colours, lit);
+	check(kd_mode("/dev/tty1") == KD_GRAPHICS, "tty1 in graphics mode while it runs",
+	      "KDGETMODE %d", kd_mode("/dev/tty1"));
+	conn_close(&c);
+	int st = daemon_stop();
+	check(st == 0, "postured stops cleanly on SIGTERM", "exit status %d", st);
+	check(kd_mode("/dev/tty1") == KD_TEXT && crtc_fb(card, &crtc) == console,
+	      "the console back after it stops", "KDGETMODE %d, framebuffer %u (the console's %u)",
+	      kd_mode("/dev/tty1"), crtc_fb(card, &crtc), console);
+	close(card);
+	return guest_status();
+}
+
+int
+main(int argc, char **argv)
+{
+	setvbuf(stdout, NULL, _IOLBF, 0);
+	signal(SIGPIPE, SIG_IGN);
+	if (argc != 3) {
+		fprintf(stderr, "usage: guest_screen POSTURED INIT\n");
+		return 2;
+	}
+	int st = run_screen(argv);
+	printf("%d checks, %d failed\n", guest_checks, guest_failures);
+	return st;
+}
