@@ -29,6 +29,7 @@
 
 #include "draw/sink.h"
 #include "tests/guest/guest_check.h"
+#include "tests/guest/guest_drm.h"
 
 /* frame k's pixel (x, y): every channel moves with k, x and y */
 static void
@@ -60,22 +61,12 @@ first_difference(const uint8_t *rgba, int w, int h, const uint8_t *scan, uint32_
 	return -1;
 }
 
-/* the framebuffer id on the first CRTC that has one (what the console shows), 0: none */
+/* the framebuffer the first CRTC with one shows (the console's, unless ours), 0: none */
 static uint32_t
 shown_fb(uint32_t *crtc_id)
 {
 	int fd = open("/dev/dri/card0", O_RDWR | O_CLOEXEC);
-	uint32_t fb = 0;
-	drmModeRes *res = fd >= 0 ? drmModeGetResources(fd) : NULL;
-	for (int i = 0; res && i < res->count_crtcs && !fb; i++) {
-		drmModeCrtc *c = drmModeGetCrtc(fd, res->crtcs[i]);
-		if (c && c->buffer_id) {
-			fb = c->buffer_id;
-			*crtc_id = c->crtc_id;
-		}
-		drmModeFreeCrtc(c);
-	}
-	drmModeFreeResources(res);
+	uint32_t fb = fd >= 0 ? crtc_fb(fd, crtc_id) : 0;
 	if (fd >= 0)
 		close(fd);
 	return fb;

@@ -25,24 +25,8 @@
 #define START_MS 90000 /* generous: TCG */
 
 #include "tests/guest/guest_daemon.h"
+#include "tests/guest/guest_drm.h"
 
-/* the framebuffer on the first CRTC that shows one, and that CRTC's id; 0: none */
-static uint32_t
-crtc_fb(int fd, uint32_t *crtc)
-{
-	uint32_t fb = 0;
-	drmModeRes *res = drmModeGetResources(fd);
-	for (int i = 0; res && i < res->count_crtcs && !fb; i++) {
-		drmModeCrtc *c = drmModeGetCrtc(fd, res->crtcs[i]);
-		if (c && c->buffer_id) {
-			fb = c->buffer_id;
-			*crtc = c->crtc_id;
-		}
-		drmModeFreeCrtc(c);
-	}
-	drmModeFreeResources(res);
-	return fb;
-}
 
 /* the pixels the screen shows (root may map another's buffer): distinct colours among a sample */
 static int
