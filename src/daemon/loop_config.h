@@ -9,6 +9,7 @@ struct loop_config {
 	const char *state_dir;
 	const char *frames_dir; /* NULL: no frames written */
 	double fps;
+	unsigned solve_budget_us;  /* the solver's time a frame; 0: the frame less its drawing (§4.7.2) */
 	int tcp_port;
 	const char *token;
 	const char *init_file; /* commands for a first start, NULL: none */

@@ -212,6 +212,8 @@ loop_live_frame(struct loop *L)
 	uint64_t begun = tape_frame_begin(&L->tape);
 	uint64_t draw = virtual ? 0 : (uint64_t)L->d.stats.draw_us;
 	uint64_t budget = L->period_us > draw + 500 ? L->period_us - draw - 500 : L->period_us / 4;
+	if (L->cfg && L->cfg->solve_budget_us && !virtual) /* set by hand (--solve-budget) */
+		budget = L->cfg->solve_budget_us;
 	/* what this frame changes on screen, apart from what was waiting already */
 	int waiting = L->scene.dirty;
 	L->scene.dirty = 0;

@@ -34,6 +34,8 @@ static const char usage[] =
 	"                     fbdev:/dev/fbN, or file:PATH:WxH (a file standing for fbdev memory)\n"
 	"  --fb DEVICE        the same as --display (a framebuffer device or file:PATH:WxH)\n"
 	"  --fps N            frame rate of the loop (default 60)\n"
+	"  --solve-budget US  the solver's time a frame, all figures (default: the frame less\n"
+	"                     its drawing and 0.5 ms)\n"
 	"  --tcp PORT         also listen on 127.0.0.1:PORT (needs --token)\n"
 	"  --token TOKEN      the token TCP clients must send first (auth TOKEN)\n"
 	"  --init FILE        commands to run when the state is empty (a first start)\n"
@@ -102,6 +104,7 @@ struct settings {
 	const char *inputs[INPUT_DEVS_MAX];
 	int ninputs;
 	double fps, pointer_gain;
+	unsigned solve_budget;
 	int tcp, grab;
 };
 
@@ -221,6 +224,13 @@ set(struct settings *s, const char *key, const char *val)
 			fprintf(stderr, "postured: fps must be a number from 1 to 1000\n");
 			return -1;
 		}
+	} else if (!strcmp(key, "solve-budget")) {
+		long us = strtol(val, &end, 10);
+		if (*end || us < 10 || us > 1000000) {
+			fprintf(stderr, "postured: solve-budget is microseconds from 10 to 1000000\n");
+			return -1;
+		}
+		s->solve_budget = (unsigned)us;
 	} else if (!strcmp(key, "tcp")) {
 		long p = strtol(val, &end, 10);
 		if (*end || p < 1 || p > 65535) {
@@ -414,6 +424,7 @@ main(int argc, char **argv)
 	struct loop_config cfg = {
 		.socket_path = s.socket, .state_dir = s.state_dir,
 		.frames_dir = s.frames[0] ? s.frames : NULL, .fps = s.fps, .tcp_port = s.tcp,
+		.solve_budget_us = s.solve_budget,
 		.token = s.token, .init_file = s.init[0] ? s.init : NULL,
 		.library_dir = s.library[0] ? s.library : NULL, .fb_device = s.fb[0] ? s.fb : NULL,
 		.panel_map = s.panel[0] ? s.panel : NULL, .inputs = s.inputs, .ninputs = s.ninputs,

@@ -4,9 +4,9 @@ replays with --replay to the same postures, bit for bit, under the recording's c
 The reference is the live daemon itself: its `status` posture hash at the end of the session
 and the hash the frame log holds after every frame. A replay that cut a solve anywhere else
 than the live one did, or ran a line in another order, gives another hash (the tests below see
-that happen by changing one solve's work in a recording). The sessions run at 1000 fps, so the
-solver's time limit cuts solves live (the test checks it did), which is what a replay must
-reproduce without a clock.
+that happen by changing one solve's work in a recording). The sessions run at 1000 fps with a
+60 us solve budget, so the solver's time limit cuts solves live on any machine (the test
+checks it did), which is what a replay must reproduce without a clock.
 """
 import os
 import pathlib
@@ -61,7 +61,8 @@ def drag_session(c):
 def recorded(daemon_factory, tmp_path):
     """A recording of drag_session made from the daemon's start; (folder, live posture hash)."""
     rec = tmp_path / "rec"
-    d = daemon_factory(fps=1000, extra=("--record", str(rec)))
+    # 60 us a frame: the time limit cuts solves on any machine (a replay must cut them alike)
+    d = daemon_factory(fps=1000, extra=("--record", str(rec), "--solve-budget", "60"))
     with d.client() as c:
         drag_session(c)
         time.sleep(0.3)
@@ -156,7 +157,7 @@ def test_a_replay_writes_nothing_but_its_frames(recorded, tmp_path):
 
 def test_a_killed_recording_replays_up_to_its_last_complete_frame(daemon_factory, tmp_path):
     rec = tmp_path / "rec"
-    d = daemon_factory(fps=1000, extra=("--record", str(rec)))
+    d = daemon_factory(fps=1000, extra=("--record", str(rec), "--solve-budget", "60"))
     with d.client() as c:
         drag_session(c)
         time.sleep(0.3)
