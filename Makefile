@@ -140,6 +140,8 @@ UNITDIR    ?= /lib/systemd/system
 UDEVDIR    ?= /lib/udev/rules.d
 SYSUSERSDIR ?= /usr/lib/sysusers.d
 MODLOADDIR ?= /usr/lib/modules-load.d
+# the scripts' interpreter: the system's Python, whose path holds PYDIR
+INSTALL_PYTHON ?= /usr/bin/python3
 INSTALL_PROGS := postured posture-figure posture-input
 INSTALL_SCRIPTS := posturectl posture-replay
 INSTALL_PY := __init__.py client.py replay.py
@@ -149,7 +151,8 @@ install: $(addprefix $(BUILD)/rel/bin/,$(INSTALL_PROGS))
 		$(DESTDIR)$(PYDIR)/posture $(DESTDIR)$(SYSCONFDIR)/posture $(DESTDIR)$(UNITDIR) \
 		$(DESTDIR)$(UDEVDIR) $(DESTDIR)$(SYSUSERSDIR) $(DESTDIR)$(MODLOADDIR)
 	install -m 0755 $(addprefix $(BUILD)/rel/bin/,$(INSTALL_PROGS)) $(DESTDIR)$(BINDIR)/
-	install -m 0755 $(addprefix tools/,$(INSTALL_SCRIPTS)) $(DESTDIR)$(BINDIR)/
+	for f in $(INSTALL_SCRIPTS); do sed -e '1s|^#!/usr/bin/env python3|#!$(INSTALL_PYTHON)|' \
+		tools/$$f > $(DESTDIR)$(BINDIR)/$$f && chmod 0755 $(DESTDIR)$(BINDIR)/$$f; done
 	install -m 0644 $(addprefix tools/posture/,$(INSTALL_PY)) $(DESTDIR)$(PYDIR)/posture/
 	install -m 0644 src/figure/library/*.fig $(DESTDIR)$(DATADIR)/library/
 	install -m 0644 tools/kiosk.init $(DESTDIR)$(DATADIR)/kiosk.init
@@ -164,8 +167,9 @@ install: $(addprefix $(BUILD)/rel/bin/,$(INSTALL_PROGS))
 
 # make deb: the Debian package (debian/), built as CI builds it, into build/deb/;
 # dpkg-buildpackage writes beside the tree, so its results are moved here
+DEB_JOBS ?= 2
 deb: | $(BUILD)/.deps-apt
-	dpkg-buildpackage -us -uc -b
+	dpkg-buildpackage -us -uc -b -j$(DEB_JOBS)
 	@mkdir -p $(BUILD)/deb
 	v=$$(dpkg-parsechangelog -S Version); a=$$(dpkg-architecture -q DEB_HOST_ARCH); \
 	for f in ../posture_$${v}_$$a.deb ../posture-dbgsym_$${v}_$$a.deb ../posture_$${v}_$$a.buildinfo \
