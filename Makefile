@@ -147,7 +147,7 @@ INSTALL_SCRIPTS := posturectl posture-replay
 INSTALL_PY := __init__.py client.py replay.py
 
 install: $(addprefix $(BUILD)/rel/bin/,$(INSTALL_PROGS))
-	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(DATADIR)/library $(DESTDIR)$(MANDIR)/man8 \
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(DATADIR)/library $(DESTDIR)$(MANDIR)/man8 $(DESTDIR)$(MANDIR)/man1 \
 		$(DESTDIR)$(PYDIR)/posture $(DESTDIR)$(SYSCONFDIR)/posture $(DESTDIR)$(UNITDIR) \
 		$(DESTDIR)$(UDEVDIR) $(DESTDIR)$(SYSUSERSDIR) $(DESTDIR)$(MODLOADDIR)
 	install -m 0755 $(addprefix $(BUILD)/rel/bin/,$(INSTALL_PROGS)) $(DESTDIR)$(BINDIR)/
@@ -157,6 +157,8 @@ install: $(addprefix $(BUILD)/rel/bin/,$(INSTALL_PROGS))
 	install -m 0644 src/figure/library/*.fig $(DESTDIR)$(DATADIR)/library/
 	install -m 0644 tools/kiosk.init $(DESTDIR)$(DATADIR)/kiosk.init
 	install -m 0644 tools/postured.8 $(DESTDIR)$(MANDIR)/man8/postured.8
+	install -m 0644 $(addprefix tools/,$(addsuffix .1,$(INSTALL_PROGS:postured=) $(INSTALL_SCRIPTS))) \
+		$(DESTDIR)$(MANDIR)/man1/
 	sed -e 's|/usr/bin/postured|$(BINDIR)/postured|' tools/postured.service \
 		> $(DESTDIR)$(UNITDIR)/postured.service
 	sed -e 's|/usr/share/posture|$(DATADIR)|' tools/postured.conf \

@@ -25,6 +25,8 @@ pytestmark = pytest.mark.skipif(
 FILES = [
     "usr/bin/postured", "usr/bin/posturectl", "usr/bin/posture-figure", "usr/bin/posture-input",
     "usr/bin/posture-replay", "usr/share/man/man8/postured.8.gz",
+    "usr/share/man/man1/posturectl.1.gz", "usr/share/man/man1/posture-replay.1.gz",
+    "usr/share/man/man1/posture-figure.1.gz", "usr/share/man/man1/posture-input.1.gz",
     "lib/systemd/system/postured.service", "lib/udev/rules.d/60-posture.rules",
     "usr/lib/sysusers.d/posture.conf", "usr/lib/modules-load.d/posture.conf",
     "etc/posture/postured.conf", "usr/share/posture/kiosk.init",
