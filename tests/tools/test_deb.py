@@ -125,6 +125,11 @@ INSTALL = textwrap.dedent("""\
     test -L $m/etc/systemd/system/multi-user.target.wants/postured.service
     chroot $m /usr/bin/python3 -c 'import posture; print("client", posture.__file__)'
     chroot $m posturectl --help >/dev/null
+    # the unit as systemd reads it, with its binary, user and man page in place
+    if command -v systemd-analyze >/dev/null; then
+        chroot $m systemd-analyze verify /lib/systemd/system/postured.service
+        echo "unit verified"
+    fi
     # the installed daemon as the installed user with the installed configuration; the
     # framebuffer a file (the machine has none), the state in /tmp
     mkdir -p $m/tmp/st $m/tmp/rt
@@ -161,6 +166,8 @@ def test_install_into_a_throwaway_root(deb, tmp_path):
     assert "install ok installed" in r.stdout
     assert "posture:" in r.stdout and "/var/lib/posture" in r.stdout
     assert "/usr/lib/python3/dist-packages/posture/__init__.py" in r.stdout
+    if shutil.which("systemd-analyze"):
+        assert "unit verified" in r.stdout
     log = (tmp_path / "postured.log").read_text()
     # the first start loaded the kiosk's init from /usr/share/posture (the human as jack)
     assert "listening on /tmp/rt/s.sock" in log, log
