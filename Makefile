@@ -4,6 +4,7 @@
 #   make test    unit tests (release and ASan+UBSan builds) and system tests
 #   make bench   benchmarks; each prints "BENCH <name> key=value ..." lines
 #   make deps    installs what is missing (Debian packages, Python venv)
+#   make deb     the Debian package (debian/) into build/deb/; make install: DESTDIR, PREFIX
 
 SHELL   := /bin/bash
 CC      ?= cc
