@@ -4,6 +4,7 @@
 #   make test    unit tests (release and ASan+UBSan builds) and system tests
 #   make bench   benchmarks; each prints "BENCH <name> key=value ..." lines
 #   make deps    installs what is missing (Debian packages, Python venv)
+#   make deb     the Debian package (debian/) into build/deb/; make install: DESTDIR, PREFIX
 
 SHELL   := /bin/bash
 CC      ?= cc
@@ -28,8 +29,9 @@ PY      := $(VENV)/bin/python
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
 	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils \
 	libxkbcommon-dev xkb-data libx11-data libdrm-dev
-# without their recommends: QEMU boots the kernel test tier's guest (tests/guest)
-DEB_PKGS_LEAN := qemu-system-x86
+# without their recommends: QEMU boots the kernel test tier's guest (tests/guest);
+# debhelper, fakeroot and lintian build and check the Debian package (make deb)
+DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian
 
 # the layers, bottom up; each folder includes only from those before it (make layer-check)
 LAYERS    := figure pose draw interact daemon
@@ -44,7 +46,7 @@ GUEST_SRC := $(wildcard tests/guest/guest_*.c)
 # two builds of everything: rel (optimised) and san (ASan + UBSan)
 define variant
 $(1)_CFLAGS := $(BASE) $(WARN) $(2)
-$(1)_LDFLAGS := $(3)
+$(1)_LDFLAGS := $(3) $(LDFLAGS)
 $(1)_OBJ := $$(patsubst %.c,$(BUILD)/$(1)/%.o,$$(LIB_SRC))
 $(1)_LIB := $(BUILD)/$(1)/libposture.a
 $(1)_TOOLS := $$(patsubst tools/%.c,$(BUILD)/$(1)/bin/%,$$(TOOL_SRC)) $(BUILD)/$(1)/bin/postured
@@ -86,7 +88,7 @@ endef
 $(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,))
 $(eval $(call variant,san,-O1 -g $(SAN),$(SAN)))
 
-.PHONY: all run test layer-check unit-test system-test fuzz fuzz-smoke bench deps check clean
+.PHONY: all run test layer-check unit-test system-test fuzz fuzz-smoke bench deps check clean install deb
 .SECONDARY:
 
 all: $(rel_LIB) $(rel_TOOLS) $(rel_TESTS) $(rel_BENCH) $(rel_GUEST)
@@ -96,9 +98,10 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 deps: $(BUILD)/.deps-apt $(VENV)/.installed
 
+# NO_APT=1 (the package build, debian/rules): the Build-Depends are there; no apt-get
 $(BUILD)/.deps-apt: Makefile
 	@mkdir -p $(BUILD)
-	@missing=$$(for p in $(DEB_PKGS) $(DEB_PKGS_LEAN); do \
+	@[ "$(NO_APT)" = 1 ] || missing=$$(for p in $(DEB_PKGS) $(DEB_PKGS_LEAN); do \
 		dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; \
 	done); \
 	if [ -n "$$missing" ]; then \
@@ -122,6 +125,59 @@ run: deps $(BUILD)/rel/bin/postured $(BUILD)/rel/bin/posture-figure
 	@mkdir -p $(BUILD)/run
 	$(BUILD)/rel/bin/postured --socket $(BUILD)/run/postured.sock --state-dir $(BUILD)/run/state \
 		--frames $(BUILD)/run/frames --init tools/kiosk.init --library src/figure/library
+
+# ---- install and the Debian package -------------------------------------
+# make install [DESTDIR=...] [PREFIX=/usr/local]: the programs, the man page, the Python
+# client, the shipped figures and the kiosk's first start under PREFIX; the system's
+# files (unit, udev rules, sysusers, modules-load, the configuration) where systemd,
+# udev and the package tools look for them, whatever PREFIX is
+PREFIX     ?= /usr/local
+BINDIR     ?= $(PREFIX)/bin
+DATADIR    ?= $(PREFIX)/share/posture
+MANDIR     ?= $(PREFIX)/share/man
+PYDIR      ?= $(if $(filter /usr,$(PREFIX)),/usr/lib/python3/dist-packages,$(PREFIX)/lib/python3/dist-packages)
+SYSCONFDIR ?= /etc
+UNITDIR    ?= /lib/systemd/system
+UDEVDIR    ?= /lib/udev/rules.d
+SYSUSERSDIR ?= /usr/lib/sysusers.d
+MODLOADDIR ?= /usr/lib/modules-load.d
+# the scripts' interpreter: the system's Python, whose path holds PYDIR
+INSTALL_PYTHON ?= /usr/bin/python3
+INSTALL_PROGS := postured posture-figure posture-input
+INSTALL_SCRIPTS := posturectl posture-replay
+INSTALL_PY := __init__.py client.py replay.py
+
+install: $(addprefix $(BUILD)/rel/bin/,$(INSTALL_PROGS))
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(DATADIR)/library $(DESTDIR)$(MANDIR)/man8 $(DESTDIR)$(MANDIR)/man1 \
+		$(DESTDIR)$(PYDIR)/posture $(DESTDIR)$(SYSCONFDIR)/posture $(DESTDIR)$(UNITDIR) \
+		$(DESTDIR)$(UDEVDIR) $(DESTDIR)$(SYSUSERSDIR) $(DESTDIR)$(MODLOADDIR)
+	install -m 0755 $(addprefix $(BUILD)/rel/bin/,$(INSTALL_PROGS)) $(DESTDIR)$(BINDIR)/
+	for f in $(INSTALL_SCRIPTS); do sed -e '1s|^#!/usr/bin/env python3|#!$(INSTALL_PYTHON)|' \
+		tools/$$f > $(DESTDIR)$(BINDIR)/$$f && chmod 0755 $(DESTDIR)$(BINDIR)/$$f; done
+	install -m 0644 $(addprefix tools/posture/,$(INSTALL_PY)) $(DESTDIR)$(PYDIR)/posture/
+	install -m 0644 src/figure/library/*.fig $(DESTDIR)$(DATADIR)/library/
+	install -m 0644 tools/kiosk.init $(DESTDIR)$(DATADIR)/kiosk.init
+	install -m 0644 tools/postured.8 $(DESTDIR)$(MANDIR)/man8/postured.8
+	install -m 0644 $(addprefix tools/,$(addsuffix .1,$(INSTALL_PROGS:postured=) $(INSTALL_SCRIPTS))) \
+		$(DESTDIR)$(MANDIR)/man1/
+	sed -e 's|/usr/bin/postured|$(BINDIR)/postured|' tools/postured.service \
+		> $(DESTDIR)$(UNITDIR)/postured.service
+	sed -e 's|/usr/share/posture|$(DATADIR)|' tools/postured.conf \
+		> $(DESTDIR)$(SYSCONFDIR)/posture/postured.conf
+	install -m 0644 tools/60-posture.rules $(DESTDIR)$(UDEVDIR)/60-posture.rules
+	install -m 0644 tools/posture.sysusers $(DESTDIR)$(SYSUSERSDIR)/posture.conf
+	install -m 0644 tools/posture-modules.conf $(DESTDIR)$(MODLOADDIR)/posture.conf
+
+# make deb: the Debian package (debian/), built as CI builds it, into build/deb/;
+# dpkg-buildpackage writes beside the tree, so its results are moved here
+DEB_JOBS ?= 2
+deb: | $(BUILD)/.deps-apt
+	dpkg-buildpackage -us -uc -b -j$(DEB_JOBS)
+	@mkdir -p $(BUILD)/deb
+	v=$$(dpkg-parsechangelog -S Version); a=$$(dpkg-architecture -q DEB_HOST_ARCH); \
+	for f in ../posture_$${v}_$$a.deb ../posture-dbgsym_$${v}_$$a.deb ../posture_$${v}_$$a.buildinfo \
+		../posture_$${v}_$$a.changes; do [ ! -e $$f ] || mv $$f $(BUILD)/deb/; done
+	@ls -l $(BUILD)/deb
 
 # ---- tests ---------------------------------------------------------------
 test: deps layer-check unit-test system-test fuzz-smoke

@@ -192,8 +192,13 @@ class Result:
 
 
 def default_postured():
+    """The tree's build (POSTURE_BUILD, else build/rel); installed (make install, the
+    Debian package), the postured on PATH."""
     root = pathlib.Path(__file__).resolve().parents[2]
-    return root / os.environ.get("POSTURE_BUILD", "build/rel") / "bin" / "postured"
+    built = root / os.environ.get("POSTURE_BUILD", "build/rel") / "bin" / "postured"
+    if built.exists() or "POSTURE_BUILD" in os.environ:
+        return built
+    return pathlib.Path(shutil.which("postured") or built)
 
 
 def replay_once(postured, rec, point, queries, frames_dir):
