@@ -63,7 +63,7 @@ static const char usage[] =
 	"                     virtual clock, frame after frame as fast as it goes, then --after's\n"
 	"                     queries; prints 'drive: frames=N virtual_s=S posture=HASH'; the\n"
 	"                     state directory and journal as live, no socket or devices\n"
-	"  --vt TTY           the kiosk's VT (/dev/ttyN, or stdin: the unit's TTYPath=): graphics\n"
+	"  --vt TTY           the kiosk's VT (/dev/ttyN, stdin: the unit's TTYPath=, none): graphics\n"
 	"                     mode, its keyboard off, VT switches handled (the screen given up\n"
 	"                     and taken back); put back as it was on exit\n"
 	"  --vt-restore TTY   make TTY a usable text console again (after a crash) and exit\n"
@@ -175,7 +175,7 @@ set(struct settings *s, const char *key, const char *val)
 		s->screen_h = h;
 	} else if (!strcmp(key, "vt")) {
 		snprintf(s->vt, sizeof s->vt, "%s", strcmp(val, "stdin") ? val : "");
-		s->vt_given = 1;
+		s->vt_given = strcmp(val, "none") != 0;
 	} else if (!strcmp(key, "drive")) {
 		snprintf(s->drive, sizeof s->drive, "%s", val);
 	} else if (!strcmp(key, "attract")) {

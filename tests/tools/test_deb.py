@@ -78,7 +78,7 @@ def test_package_holds_the_service_and_its_files(deb):
     assert "etc/posture/postured.conf" in (x / "DEBIAN/conffiles").read_text()
     conf = (x / "etc/posture/postured.conf").read_text()
     for line in ("init = /usr/share/posture/kiosk.init",
-                 "library = /usr/share/posture/library", "fb = /dev/fb0",
+                 "library = /usr/share/posture/library", "display = auto", "vt = stdin",
                  "state-dir = /var/lib/posture", "socket = /run/posture/postured.sock"):
         assert line in conf.splitlines(), line
 
@@ -136,7 +136,7 @@ INSTALL = textwrap.dedent("""\
     truncate -s $((640*480*4)) $m/tmp/fb
     chroot $m chown posture:posture /tmp/st /tmp/rt /tmp/fb
     chroot $m runuser -u posture -- postured --config /etc/posture/postured.conf \\
-        --state-dir /tmp/st --socket /tmp/rt/s.sock --fb file:/tmp/fb:640x480 --input none \\
+        --state-dir /tmp/st --socket /tmp/rt/s.sock --fb file:/tmp/fb:640x480 --vt none --input none \\
         --hotplug none > $T/postured.log 2>&1 &
     pid=$!
     for i in $(seq 100); do [ -S $m/tmp/rt/s.sock ] && break; sleep 0.1; done
