@@ -268,7 +268,7 @@ open_card(const char *card, const struct kms_want *want, char *err, size_t errle
 	}
 	k->base.ops = &sink_kms_ops;
 	snprintf(k->card, sizeof k->card, "%s", card);
-	k->pf = (struct pixfmt){ .bpp = 32, .red = { 16, 8 }, .green = { 8, 8 }, .blue = { 0, 8 } };
+	k->pf = (struct pixfmt){ .bpp = 32, .red = { 16, 8, 0 }, .green = { 8, 8, 0 }, .blue = { 0, 8, 0 } };
 	if ((k->fd = open(card, O_RDWR | O_CLOEXEC)) < 0) {
 		snprintf(err, errlen, "%s: %s", card, strerror(errno));
 		free(k);
