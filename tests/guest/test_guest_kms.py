@@ -1,5 +1,5 @@
 """The DRM/KMS sink (src/draw/sink_kms.c) on a real kernel: guest_kms runs in the QEMU guest
-with QEMU's standard VGA (the bochs-drm driver), sets the card's preferred mode, flips 120
+with QEMU's standard VGA (the bochs-drm driver), and again with virtio-gpu, sets the card's preferred mode, flips 120
 frames and reads each back from the scanout buffer shown, equal to the frame as XRGB8888
 (computed in the test program, not by the sink's converter); closing restores the console's
 framebuffer on the CRTC; a connector re-probe in between (the kernel made to probe first)
@@ -14,10 +14,14 @@ EXPECTED = ("kms mode set", "kms 120 frames flipped", "kms flip events",
             "fbdev emulation", "fbdev single buffer write", "fbdev read back")
 
 
-def test_kms_sink_flips_frames_that_read_back_exactly(monkeypatch):
+@pytest.mark.parametrize("device, modules", [
+    ("-vga std", ["bochs"]),                                     # bochs-drm
+    ("-device virtio-gpu-pci", ["virtio_pci", "virtio_gpu"]),    # virtio-gpu
+])
+def test_kms_sink_flips_frames_that_read_back_exactly(monkeypatch, device, modules):
     require_tier()
     require_built("guest_kms")
-    monkeypatch.setenv("POSTURE_GUEST_QEMU_ARGS", "-vga std")
-    status, lines = run_program("guest_kms", ["bochs"], ["120"], timeout=200)
+    monkeypatch.setenv("POSTURE_GUEST_QEMU_ARGS", device)
+    status, lines = run_program("guest_kms", modules, ["120"], timeout=200)
     assert_checks(status, lines, EXPECTED)
     assert any("virtual 1280x800" in ln for ln in lines), "fbdev without overallocation"
