@@ -93,13 +93,9 @@ drive(struct loop *L, const struct loop_config *cfg, uint64_t *pictures, uint64_
 			tape_take(t);
 			tape_dev_replay(t, e, &L->input);
 		} else {
-			static const char *const names[] = { "a clock read", "a line", "a frame",
-							     "a solve's work", "a figure's hash",
-							     "joints' hashes", "a frame's end",
-							     "a device's read", "the stop" };
 			snprintf(t->broken, sizeof t->broken,
 				 "%s/frames:%d: %s between frames, where the replay reads none", t->dir,
-				 e->lineno, names[e->kind]);
+				 e->lineno, tape_kind_name((enum tape_kind)e->kind));
 		}
 	}
 	return t->broken[0] ? -1 : 0;

@@ -18,6 +18,20 @@
 #include "daemon/posture_hash.h"
 #include "daemon/statefile.h"
 
+const char *
+tape_kind_name(enum tape_kind kind)
+{
+	static const char *const name[] = {
+		[TAPE_CLOCK] = "a clock read",     [TAPE_LINE] = "a line",
+		[TAPE_FRAME] = "a frame",          [TAPE_IK] = "a solve's work",
+		[TAPE_FIG] = "a figure's hash",    [TAPE_JOINTS] = "joints' hashes",
+		[TAPE_POSTURE] = "a frame's end",  [TAPE_STOP] = "the stop",
+		[TAPE_DEVICE] = "a device's file", [TAPE_DEVCALL] = "a device's decoder call",
+		[TAPE_EVENT] = "a device event",
+	};
+	return (unsigned)kind < sizeof name / sizeof *name && name[kind] ? name[kind] : "a record";
+}
+
 uint64_t
 tape_real_now(void)
 {

@@ -32,7 +32,7 @@
  *               fig FIG HASH       after a frame: a figure whose hash changed
  *               joints FIG H...    ... and its joints' hashes, for reports
  *               posture N HASH     after frame N: the hash of every figure
- *               read DEV N         device DEV's next N records were read
+ *               device, dev, event the devices' decoder calls (tape_dev.h)
  *               stop               the recording ended cleanly
  *   devN.*    device DEV's bytes in its ecosystem's format (evemu,
  *             hid-recorder, candump log), each readable by that ecosystem's
@@ -84,7 +84,6 @@ enum tape_kind {
 	TAPE_FIG,
 	TAPE_JOINTS,
 	TAPE_POSTURE,
-	TAPE_READ,
 	TAPE_STOP,
 	TAPE_DEVICE,  /* a device's file begins: fig the device, text "FORMAT FILE MAP", x its dpi */
 	TAPE_DEVCALL, /* a decoder call: fig the device, sub its kind, arg, t, count; text resync bytes */
@@ -94,8 +93,8 @@ enum tape_kind {
 struct tape_entry {
 	uint8_t kind;
 	int lineno;       /* in frames */
-	int fig;          /* IK, FIG, JOINTS; READ: the device */
-	uint64_t t;       /* CLOCK, FRAME: the time; LINE, FRAME, POSTURE: the number; READ: records */
+	int fig;          /* IK, FIG, JOINTS; DEVICE, DEVCALL: the device */
+	uint64_t t;       /* CLOCK, FRAME, DEVCALL: the time; LINE, POSTURE: the number */
 	uint64_t hash;    /* FIG, POSTURE */
 	struct ik_work work;
 	uint32_t *joints; /* JOINTS: njoints hashes (allocated) */
@@ -166,6 +165,9 @@ struct tape {
 
 /* the time now (CLOCK_MONOTONIC, us) */
 uint64_t tape_real_now(void);
+
+/* a record's kind in words ("a clock read", "a frame's end"), for messages */
+const char *tape_kind_name(enum tape_kind kind);
 
 /* ---- recording ---- */
 

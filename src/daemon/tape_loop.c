@@ -49,9 +49,6 @@ astray(struct tape *t, const char *fmt, ...)
 		snprintf(t->broken, sizeof t->broken, "%s/frames: at its end: %s", t->dir, why);
 }
 
-static const char *const kind_name[] = { "clock", "line", "frame", "ik", "fig",
-					 "joints", "posture", "read", "stop" };
-
 /* the next record, which must be of kind; NULL (the replay astray) otherwise */
 static const struct tape_entry *
 expect(struct tape *t, enum tape_kind kind, const char *wanted)
@@ -61,7 +58,7 @@ expect(struct tape *t, enum tape_kind kind, const char *wanted)
 		return NULL;
 	if (!e || e->kind != kind) {
 		astray(t, "the replay wants %s, the recording has %s here", wanted,
-		       e ? kind_name[e->kind] : "nothing more");
+		       e ? tape_kind_name((enum tape_kind)e->kind) : "nothing more");
 		return NULL;
 	}
 	t->pos++;

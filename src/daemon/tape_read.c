@@ -292,10 +292,6 @@ parse_record(struct tape *t, char *line, struct tape_entry *e, char *why, size_t
 		e->kind = TAPE_POSTURE;
 		e->t = a;
 		e->hash = b;
-	} else if (sscanf(line, "read %d %llu%n", &fig, &a, &used) == 2 && !line[used]) {
-		e->kind = TAPE_READ;
-		e->fig = fig;
-		e->t = a;
 	} else if (!strcmp(line, "stop")) {
 		e->kind = TAPE_STOP;
 	} else if (!strncmp(line, "device ", 7) || !strncmp(line, "dev ", 4) ||
