@@ -418,11 +418,7 @@ to_eye(const float view[16], const float w[3], float dest[3])
 		dest[i] = view[i] * w[0] + view[4 + i] * w[1] + view[8 + i] * w[2];
 }
 
-/*
- * The OSMesa surface made w x h, its rows max_w apart in buf: what OSMesa
- * copies into buf at the frame's end is then the frame's pixels only (the
- * whole max-size buffer before: 9 MB a frame, page faults and all).
- */
+/* the OSMesa surface made w x h (rows max_w apart): it copies only the frame's pixels out */
 static void
 surface_size(struct render *r, int w, int h)
 {
@@ -439,11 +435,7 @@ static void
 upload_packed(const struct render *r)
 {
 	const struct pack *p = &r->pack;
-	/*
-	 * A new store each frame, of the frame's size: updating the old one in
-	 * place made llvmpipe copy the whole (megabytes) store the last frame
-	 * still held, page faults and all, about a third of a frame's drawing.
-	 */
+	/* a new store each frame: in place, llvmpipe copied all the last frame still held */
 	glBindBuffer(GL_ARRAY_BUFFER, r->pvbo);
 	glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof *p->pv * (size_t)p->nv), p->pv,
 		     GL_STREAM_DRAW);
