@@ -11,7 +11,9 @@
  * back the CRTC's framebuffer as it was (the console's). Then the fbdev
  * emulation on the same card: without overallocation its virtual height
  * is the visible one, so the fbdev sink falls back to one buffer, and a
- * frame written reads back from /dev/fb0 as drawn. Prints ok/FAIL lines;
+ * frame written reads back from /dev/fb0 as drawn. tty1 is held in
+ * graphics mode meanwhile, as the daemon holds it: else the console may
+ * draw into the same memory (a failure one run in four without it). Prints ok/FAIL lines;
  * the exit status is the number of failures.
  */
 #define _GNU_SOURCE
@@ -27,6 +29,7 @@
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
+#include "daemon/vt.h"
 #include "draw/sink.h"
 #include "tests/guest/guest_check.h"
 #include "tests/guest/guest_drm.h"
@@ -151,9 +154,15 @@ fbdev(void)
 	close(fd);
 	ok("fbdev emulation %ux%u, virtual %ux%u", var.xres, var.yres, var.xres_virtual,
 	   var.yres_virtual);
+	struct vt vt;
+	if (vt_take(&vt, "/dev/tty1", err, sizeof err) < 0) {
+		fail("fbdev console off", "%s", err);
+		return;
+	}
 	struct sink *s = sink_fb_open("/dev/fb0", err, sizeof err);
 	if (!s) {
 		fail("fbdev open", "%s", err);
+		vt_give_back(&vt);
 		return;
 	}
 	int w = (int)var.xres, h = (int)var.yres;
@@ -174,6 +183,7 @@ fbdev(void)
 	free(shown);
 	free(rgba);
 	sink_close(s);
+	vt_give_back(&vt);
 }
 
 int
