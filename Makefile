@@ -31,10 +31,10 @@ DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-de
 	libxkbcommon-dev xkb-data libx11-data libdrm-dev
 # without their recommends: QEMU boots the kernel test tier's guest (tests/guest);
 # debhelper, fakeroot and lintian build and check the Debian package (make deb)
-DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian
+DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian liburdfdom-tools
 
 # the layers, bottom up; each folder includes only from those before it (make layer-check)
-LAYERS    := figure pose draw interact daemon
+LAYERS    := figure pose draw export interact daemon
 MAIN_SRC  := src/daemon/main.c
 LIB_SRC   := $(filter-out $(MAIN_SRC),$(foreach l,$(LAYERS),$(wildcard src/$(l)/*.c)) $(wildcard devices/*.c))
 TOOL_SRC  := $(wildcard tools/*.c)

@@ -13,7 +13,7 @@
 #include "figure/kin.h"
 #include "figure/model.h"
 #include "figure/state.h"
-#include "figure/urdf.h"
+#include "export/urdf.h"
 
 static const char usage[] =
 	"usage: posture-figure [FIGURE OPTIONS] [POSTURE OPTIONS] COMMAND\n"
@@ -30,18 +30,25 @@ static const char usage[] =
 	"  --random SEED         one random posture within the joint limits\n"
 	"  --root SEG.SITE       re-root through this site (in the initial posture);\n"
 	"                        postures then keep it fixed in space\n"
+	"output:\n"
+	"  --out FILE.urdf       urdf: write FILE.urdf and each segment's mesh beside it\n"
+	"                        (FILE_SEGMENT.stl) instead of the URDF alone to stdout\n"
 	"commands:\n"
 	"  summary   counts, mass, height, centre of mass, root\n"
 	"  dofs      every dof: index, joint, kind and axis, limits, initial value\n"
+	"  joints    every joint: its sites on the parent and the child side of the\n"
+	"            current root's tree, and its number of dofs\n"
 	"  sites     per posture, every site: position and rotation matrix (row-major)\n"
 	"  com       per posture, the centre of mass\n"
-	"  urdf      the figure as URDF (hierarchy of the current root)\n"
+	"  segments  per posture, every segment: its mass, the position of its centre\n"
+	"            of mass, its frame's position and rotation matrix (row-major)\n"
+	"  urdf      the figure as URDF (hierarchy of the current root; geometry with --out)\n"
 	"  write     the figure in the figure language\n";
 
 struct options {
 	int human;
 	struct human_def hdef;
-	const char *figure, *qfile, *root, *command;
+	const char *figure, *qfile, *root, *command, *out;
 	long seed;
 	int have_seed;
 };
@@ -108,6 +115,9 @@ parse_options(int argc, char **argv, struct options *o)
 		} else if (!strcmp(a, "--root")) {
 			o->root = v;
 			i++;
+		} else if (!strcmp(a, "--out")) {
+			o->out = v;
+			i++;
 		} else if (a[0] == '-') {
 			fprintf(stderr, "posture-figure: unknown option %s\n%s", a, usage);
 			return -1;
@@ -173,6 +183,19 @@ print_dofs(const struct model *m)
 }
 
 static void
+print_joints(const struct model *m, const struct state *s)
+{
+	char from[2 * MODEL_NAME_MAX], to[2 * MODEL_NAME_MAX];
+	printf("# joint parent-side-site child-side-site dofs\n");
+	for (int j = 0; j < m->njnt; j++) {
+		int fwd = s->jnt_dir[j] > 0;
+		model_site_fullname(m, fwd ? m->jnt_site_from[j] : m->jnt_site_to[j], from, sizeof from);
+		model_site_fullname(m, fwd ? m->jnt_site_to[j] : m->jnt_site_from[j], to, sizeof to);
+		printf("%s %s %s %d\n", m->jnt_name[j], from, to, m->jnt_ndof[j]);
+	}
+}
+
+static void
 print_sites(const struct model *m, const struct state *s, int posture)
 {
 	char name[2 * MODEL_NAME_MAX];
@@ -188,23 +211,62 @@ print_sites(const struct model *m, const struct state *s, int posture)
 	}
 }
 
-/* the per-posture commands; returns 0 or -1 for an unknown command */
+static void
+print_segments(const struct model *m, const struct state *s, int posture)
+{
+	printf("posture %d\n", posture);
+	for (int seg = 0; seg < m->nseg; seg++) {
+		const struct xform *x = &s->seg_xf[seg];
+		double c[3];
+		xform_apply(x, &m->seg_com[3 * seg], c);
+		printf("%s %.17g %.17g %.17g %.17g", m->seg_name[seg], m->seg_mass[seg], c[0], c[1],
+		       c[2]);
+		for (int r = 0; r < 3; r++)
+			printf(" %.17g", x->p[r]);
+		for (int r = 0; r < 9; r++)
+			printf(" %.17g", x->r[r]);
+		printf("\n");
+	}
+}
+
+/* the URDF to stdout, or with its meshes to files */
 static int
-per_posture(const struct model *m, const struct state *s, const char *cmd, int posture)
+write_urdf(const struct model *m, const struct state *s, const char *out)
+{
+	if (!out)
+		return urdf_write(m, s, NULL, stdout) < 0 ? 1 : 0;
+	char err[512];
+	int n = urdf_export(m, s, out, err, sizeof err);
+	if (n < 0) {
+		fprintf(stderr, "posture-figure: %s\n", err);
+		return 1;
+	}
+	fprintf(stderr, "posture-figure: %s and %d mesh files written\n", out, n - 1);
+	return 0;
+}
+
+/* the per-posture commands; returns 0, 1 on a failure (said), or -1 for an unknown command */
+static int
+per_posture(const struct model *m, const struct state *s, const char *cmd, int posture,
+	    const char *out)
 {
 	if (!strcmp(cmd, "sites"))
 		print_sites(m, s, posture);
+	else if (!strcmp(cmd, "segments"))
+		print_segments(m, s, posture);
 	else if (!strcmp(cmd, "com"))
 		printf("com %d %.17g %.17g %.17g mass %.17g\n", posture, s->com[0], s->com[1],
 		       s->com[2], m->total_mass);
 	else if (!strcmp(cmd, "summary"))
 		print_summary(m, s);
 	else if (!strcmp(cmd, "urdf"))
-		return urdf_write(m, s, stdout);
+		return write_urdf(m, s, out);
 	else if (!strcmp(cmd, "write"))
-		return figure_write(m, stdout);
+		return figure_write(m, stdout) < 0 ? 1 : 0;
 	else if (!strcmp(cmd, "dofs"))
 		print_dofs(m);
+	else if (!strcmp(cmd, "joints"))
+		print_joints(m, s);
 	else
 		return -1;
 	return 0;
@@ -294,10 +356,10 @@ main(int argc, char **argv)
 		kin_update(m, s);
 	}
 	if (!o.qfile) {
-		if (per_posture(m, s, o.command, 0) < 0) {
+		int got = per_posture(m, s, o.command, 0, o.out);
+		if (got < 0)
 			fprintf(stderr, "posture-figure: unknown command '%s'\n%s", o.command, usage);
-			rc = 2;
-		}
+		rc = got < 0 ? 2 : got;
 		goto out;
 	}
 	FILE *f = strcmp(o.qfile, "-") ? fopen(o.qfile, "r") : stdin;
@@ -309,9 +371,11 @@ main(int argc, char **argv)
 	int lineno = 0, n = 0, got;
 	while ((got = read_posture(f, m, s->q, &lineno)) > 0) {
 		kin_update(m, s);
-		if (per_posture(m, s, o.command, n++) < 0) {
-			fprintf(stderr, "posture-figure: unknown command '%s'\n", o.command);
-			rc = 2;
+		int done = per_posture(m, s, o.command, n++, o.out);
+		if (done) {
+			if (done < 0)
+				fprintf(stderr, "posture-figure: unknown command '%s'\n", o.command);
+			rc = done < 0 ? 2 : done;
 			break;
 		}
 	}

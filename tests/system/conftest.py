@@ -3,6 +3,7 @@ import os
 import pathlib
 import subprocess
 
+import numpy as np
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -24,3 +25,46 @@ def run_tool(*args, stdin=None):
 @pytest.fixture
 def tool():
     return run_tool
+
+
+# the figures the export and kinematics tests take through the peers
+FIGURE_ARGS = {
+    "human-male": ["--human"],
+    "human-female": ["--human", "--sex", "female"],
+    "table": ["--figure", FIGURES / "table.fig"],
+    "chair": ["--figure", FIGURES / "chair.fig"],
+    "vehicle-seat": ["--figure", FIGURES / "vehicle_seat.fig"],
+}
+
+
+def read_dofs(args):
+    """posture-figure dofs -> [(urdf joint name, lower, upper)] in dof order"""
+    dofs = []
+    for line in run_tool(*args, "dofs").splitlines():
+        if line.startswith("#") or not line.strip():
+            continue
+        idx, joint, k, kind, lo, hi, init = line.split()
+        dofs.append((f"{joint}__{k}", float(lo), float(hi)))
+    return dofs
+
+
+def read_sites(text):
+    """posture-figure sites -> list (per posture) of {site: (p, R)}"""
+    postures, cur = [], None
+    for line in text.splitlines():
+        if line.startswith("posture "):
+            cur = {}
+            postures.append(cur)
+            continue
+        f = line.split()
+        vals = np.array([float(v) for v in f[1:]])
+        cur[f[0]] = (vals[:3], vals[3:].reshape(3, 3))
+    return postures
+
+
+def random_postures(dofs, n, seed):
+    """n postures drawn uniformly within the limits"""
+    rng = np.random.default_rng(seed)
+    lo = np.array([d[1] for d in dofs])
+    hi = np.array([d[2] for d in dofs])
+    return lo + (hi - lo) * rng.random((n, len(dofs)))

@@ -5,60 +5,19 @@ postures within the joint limits are evaluated by both. Every site's global fram
 agree to 1e-9 (metres, and rotation-matrix entries), and so must the centre of mass.
 The same is done after re-rooting, which exports the tree with inverted joints.
 """
-import pathlib
-
 import numpy as np
 import pinocchio as pin
 import pytest
 
-from conftest import FIGURES, run_tool
+from conftest import FIGURE_ARGS, random_postures, read_dofs, read_sites, run_tool
 
 POSTURES = 100
 TOL = 1e-9
-
-FIGURE_ARGS = {
-    "human-male": ["--human"],
-    "human-female": ["--human", "--sex", "female"],
-    "table": ["--figure", FIGURES / "table.fig"],
-    "chair": ["--figure", FIGURES / "chair.fig"],
-    "vehicle-seat": ["--figure", FIGURES / "vehicle_seat.fig"],
-}
 
 # re-rooted exports: the URDF tree then runs through joints against their direction
 REROOTS = {
     "human-male": ["foot_l.balance", "hand_r.palm", "pelvis.lower_torso"],
 }
-
-
-def read_dofs(args):
-    dofs = []
-    for line in run_tool(*args, "dofs").splitlines():
-        if line.startswith("#") or not line.strip():
-            continue
-        idx, joint, k, kind, lo, hi, init = line.split()
-        dofs.append((f"{joint}__{k}", float(lo), float(hi)))
-    return dofs
-
-
-def read_sites(text):
-    """posture-figure sites -> list (per posture) of {site: (p, R)}"""
-    postures, cur = [], None
-    for line in text.splitlines():
-        if line.startswith("posture "):
-            cur = {}
-            postures.append(cur)
-            continue
-        f = line.split()
-        vals = np.array([float(v) for v in f[1:]])
-        cur[f[0]] = (vals[:3], vals[3:].reshape(3, 3))
-    return postures
-
-
-def random_postures(dofs, n, seed):
-    rng = np.random.default_rng(seed)
-    lo = np.array([d[1] for d in dofs])
-    hi = np.array([d[2] for d in dofs])
-    return lo + (hi - lo) * rng.random((n, len(dofs)))
 
 
 def pin_configuration(model, dofs, q):
