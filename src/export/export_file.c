@@ -2,8 +2,19 @@
 #include "export/export_file.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <string.h>
 #include <unistd.h>
+
+FILE *
+export_fopen(const char *path)
+{
+	int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
+	FILE *f = fd >= 0 ? fdopen(fd, "wb") : NULL;
+	if (fd >= 0 && !f)
+		close(fd);
+	return f;
+}
 
 FILE *
 export_file_open(struct export_file *x, const char *path, char *err, size_t errlen)
@@ -13,7 +24,7 @@ export_file_open(struct export_file *x, const char *path, char *err, size_t errl
 		return NULL;
 	}
 	snprintf(x->tmp, sizeof x->tmp, "%s.part", path);
-	x->f = fopen(x->tmp, "wb");
+	x->f = export_fopen(x->tmp);
 	if (!x->f)
 		snprintf(err, errlen, "%s: %s", x->tmp, strerror(errno));
 	return x->f;

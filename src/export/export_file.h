@@ -15,6 +15,13 @@ struct export_file {
 	char tmp[4096 + 16];
 };
 
+/*
+ * Opens path for writing, never through a symbolic link (an export names
+ * files beside the one the caller checked: a link planted there must not
+ * lead elsewhere). NULL with errno on failure.
+ */
+FILE *export_fopen(const char *path);
+
 /* opens the temporary file for path; the stream, or NULL with why in err */
 FILE *export_file_open(struct export_file *x, const char *path, char *err, size_t errlen);
 

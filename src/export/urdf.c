@@ -199,7 +199,7 @@ write_mesh_file(const struct model *m, int seg, const char *path, char *err, siz
 		snprintf(err, errlen, "out of memory");
 		return -1;
 	}
-	FILE *f = fopen(path, "wb");
+	FILE *f = export_fopen(path);
 	int rc = f ? seg_mesh_write_stl(&mesh, m->seg_name[seg], f) : -1;
 	if (f && fclose(f) != 0)
 		rc = -1;

@@ -102,6 +102,8 @@ static const struct group_key group_table[] = {
 	{ "load", "posture", G_FILES },
 	{ "save", "session", G_FILES },
 	{ "load", "session", G_FILES },
+	{ "export", "urdf", G_FILES },
+	{ "export", "bvh", G_FILES },
 	{ "undo", "", G_FILES },
 	{ "redo", "", G_FILES },
 	{ "record", "start", G_FILES },
