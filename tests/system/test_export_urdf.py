@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from conftest import BUILD, FIGURE_ARGS, random_postures, read_dofs, read_sites, run_tool
+from daemon import daemon, daemon_factory  # noqa: F401 (fixtures)
 
 mujoco = pytest.importorskip("mujoco")
 pybullet = pytest.importorskip("pybullet")
@@ -224,3 +225,32 @@ def test_check_urdf_parses_it(figure, tmp_path):
     assert "Successfully Parsed XML" in proc.stdout
     # the tree it read: our root under world, every joint's dofs as joints
     assert "root Link: world has 1 child(ren)" in proc.stdout
+
+
+@pytest.mark.parametrize("root", [None, "hand_r.palm"])
+def test_daemon_export_is_the_posture_mujoco_shows(daemon, root):
+    """`export urdf` over the socket, of a figure posed and moved in a session (and
+    re-rooted): MuJoCo, given the joint values the daemon reports, puts every site where
+    the daemon has it, to 1e-9 m: the root's placement now is in the file."""
+    c = daemon.client()
+    c.request("load human as jack")
+    if root:
+        c.request(f"set root jack {root}")
+    c.request("set joint jack shoulder_r 20deg 40deg -30deg")
+    c.request("set joint jack knee_l 50deg")
+    c.request("set joint jack spine_4 2deg 1deg 1deg")
+    (daemon.state_dir / "out").mkdir()
+    got = c.request("export urdf jack out/jack.urdf")
+    assert got["files"] == 1 + sum(1 for _ in (daemon.state_dir / "out").glob("jack_*.stl"))
+    model = mujoco.MjModel.from_xml_path(str(daemon.state_dir / "out" / "jack.urdf"))
+    data = mujoco.MjData(model)
+    for joint, values in c.request("get posture jack")["posture"].items():
+        for k, v in enumerate(values):
+            data.qpos[model.joint(f"{joint}__{k}").qposadr[0]] = v
+    mujoco.mj_kinematics(model, data)
+    sites = list(read_sites(run_tool("--human", "sites"))[0])
+    worst = 0.0
+    for site in sites:
+        want = np.array(c.request(f"get site jack {site}")["position"])
+        worst = max(worst, np.abs(data.xpos[model.body(site_link(site)).id] - want).max())
+    assert worst < TOL, f"a site is {worst:.3g} m from where the daemon has it"
