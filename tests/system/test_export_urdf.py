@@ -71,6 +71,10 @@ def test_mujoco_loads_it_and_agrees(figure, tmp_path):
     data = mujoco.MjData(model)
     assert model.nq == len(dofs)
     adr = [model.joint(name).qposadr[0] for name, _, _ in dofs]
+    # our limits are MuJoCo's ranges, enforced
+    for name, lo, hi in dofs:
+        j = model.joint(name)
+        assert j.limited[0] and np.allclose(j.range, [lo, hi], rtol=0, atol=1e-12), name
     bodies = {site: model.body(site_link(site)).id for site in sites[0]}
     # every segment's meshes came through: one visual and one collision geom each
     with_geometry = sum(1 for s in ET.parse(urdf).getroot().iter("link") if s.find("visual") is not None)
