@@ -15,7 +15,10 @@
  * viewer poses the figure by turning the joint nodes. Meshes are
  * seg_mesh.h's (as the renderer draws them), in the segment frame, each
  * with a material of the segment's colour. Units metres; glTF's axes are
- * ours (y up, right-handed).
+ * ours (y up, right-handed), and the human faces +z with its left at +x,
+ * as glTF's front and left are. Nodes are named after the figure, its
+ * segments and joints, as they are: a joint may share its segment's name
+ * (glTF allows it; importers such as Blender's add a suffix).
  */
 #ifndef POSTURE_GLTF_H
 #define POSTURE_GLTF_H
