@@ -298,6 +298,7 @@ BAD = {
     "no --out": ([], None, "needs --out"),
     "no such directory": ([], "out/missing/x.glb", "No such file or directory"),
     "a file for a directory": ([], "out/file/x.glb", "Not a directory"),
+    "a read-only directory": ([], "out/x.glb", "Permission denied"),
 }
 
 
@@ -306,10 +307,17 @@ def test_bad_request_writes_nothing(case, tmp_path):
     extra, out, says = BAD[case]
     (tmp_path / "out").mkdir()
     (tmp_path / "out" / "file").write_text("")
+    if case == "a read-only directory":
+        if os.geteuid() == 0:
+            pytest.skip("root writes into a read-only directory")
+        (tmp_path / "out").chmod(0o555)
     cmd = [str(BUILD / "bin" / "posture-figure"), *extra]
     if out:
         cmd += ["--out", str(tmp_path / out)]
-    proc = subprocess.run([*cmd, "gltf"], capture_output=True, text=True, timeout=60)
+    try:
+        proc = subprocess.run([*cmd, "gltf"], capture_output=True, text=True, timeout=60)
+    finally:
+        (tmp_path / "out").chmod(0o755)
     assert proc.returncode != 0
     assert says in proc.stderr, proc.stderr
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["file"]
