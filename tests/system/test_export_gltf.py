@@ -20,7 +20,8 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import BUILD, FIGURE_ARGS, ROOT, random_postures, read_dofs, run_tool
+from conftest import (BUILD, FIGURE_ARGS, ROOT, quat_matrix, random_postures, read_dofs,
+                      read_segments, run_tool)
 
 trimesh = pytest.importorskip("trimesh")
 
@@ -65,22 +66,6 @@ def write_qfile(figure, tmp_path, seed):
     return path
 
 
-def read_segments(text):
-    """posture-figure segments -> list (per posture) of {segment: 4x4 frame}"""
-    postures = []
-    for line in text.splitlines():
-        if line.startswith("posture "):
-            postures.append({})
-            continue
-        f = line.split()
-        v = np.array([float(x) for x in f[5:]])
-        frame = np.eye(4)
-        frame[:3, 3] = v[:3]
-        frame[:3, :3] = v[3:].reshape(3, 3)
-        postures[-1][f[0]] = frame
-    return postures
-
-
 def read_glb(path):
     """the JSON document and the BIN chunk of a .glb"""
     data = path.read_bytes()
@@ -105,14 +90,6 @@ def accessor(doc, binary, index):
     n = {"SCALAR": 1, "VEC3": 3, "VEC4": 4}[acc["type"]]
     start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
     return np.frombuffer(binary, dtype="<f4", count=acc["count"] * n, offset=start).reshape(-1, n)
-
-
-def quat_matrix(q):
-    x, y, z, w = q / np.linalg.norm(q)
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
 def trs_matrix(t, r):
