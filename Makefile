@@ -30,8 +30,11 @@ DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-de
 	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils \
 	libxkbcommon-dev xkb-data libx11-data libdrm-dev
 # without their recommends: QEMU boots the kernel test tier's guest (tests/guest);
-# debhelper, fakeroot and lintian build and check the Debian package (make deb)
-DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian liburdfdom-tools
+# debhelper, fakeroot and lintian build and check the Debian package (make deb);
+# nodejs and npm run the Khronos glTF validator (the glTF export's tests)
+DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian liburdfdom-tools nodejs npm
+# the Khronos glTF validator, from npm into $(BUILD)/npm (make deps)
+GLTF_VALIDATOR := gltf-validator@2.0.0-dev.3.10
 
 # the layers, bottom up; each folder includes only from those before it (make layer-check)
 LAYERS    := figure pose draw export interact daemon
@@ -96,12 +99,15 @@ all: $(rel_LIB) $(rel_TOOLS) $(rel_TESTS) $(rel_BENCH) $(rel_GUEST)
 # ---- dependencies --------------------------------------------------------
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-deps: $(BUILD)/.deps-apt $(VENV)/.installed
+deps: $(BUILD)/.deps-apt $(VENV)/.installed $(BUILD)/npm/.installed-$(GLTF_VALIDATOR)
 
-# NO_APT=1 (the package build, debian/rules): the Build-Depends are there; no apt-get
+# NO_APT=1 (the package build, debian/rules): the Build-Depends are there; no apt-get.
+# npm counts as there when its program is: another nodejs (NodeSource's) bundles it and
+# conflicts with Debian's package
 $(BUILD)/.deps-apt: Makefile
 	@mkdir -p $(BUILD)
 	@[ "$(NO_APT)" = 1 ] || missing=$$(for p in $(DEB_PKGS) $(DEB_PKGS_LEAN); do \
+		{ [ $$p = npm ] && command -v npm >/dev/null; } || \
 		dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; \
 	done); \
 	if [ -n "$$missing" ]; then \
@@ -119,6 +125,12 @@ $(VENV)/.installed: tests/requirements.txt | $(BUILD)/.deps-apt
 	@[ -x $(PY) ] || python3 -m venv $(VENV)
 	$(PY) -m pip install -q --disable-pip-version-check -r tests/requirements.txt
 	@touch $@
+
+# without npm the validator's tests skip, saying why
+$(BUILD)/npm/.installed-$(GLTF_VALIDATOR): | $(BUILD)/.deps-apt
+	@if command -v npm >/dev/null; then \
+		npm install --prefix $(BUILD)/npm --no-audit --no-fund $(GLTF_VALIDATOR) && touch $@; \
+	else echo "deps: no npm: $(GLTF_VALIDATOR) not installed (the glTF validator tests skip)"; fi
 
 # ---- the main job --------------------------------------------------------
 run: deps $(BUILD)/rel/bin/postured $(BUILD)/rel/bin/posture-figure

@@ -1,7 +1,7 @@
 /*
  * posture-figure - inspect a figure: its dofs and limits, the global frames
- * of its sites for given postures, its centre of mass; export it as URDF or
- * in the figure language.
+ * of its sites for given postures, its centre of mass; export it as URDF,
+ * glTF or in the figure language.
  */
 #include <errno.h>
 #include <stdio.h>
@@ -13,6 +13,8 @@
 #include "figure/kin.h"
 #include "figure/model.h"
 #include "figure/state.h"
+#include "export/gltf.h"
+#include "export/seg_mesh.h"
 #include "export/urdf.h"
 
 static const char usage[] =
@@ -33,6 +35,7 @@ static const char usage[] =
 	"output:\n"
 	"  --out FILE.urdf       urdf: write FILE.urdf and each segment's mesh beside it\n"
 	"                        (FILE_SEGMENT.stl) instead of the URDF alone to stdout\n"
+	"  --out FILE.glb        gltf: the file to write (required)\n"
 	"commands:\n"
 	"  summary   counts, mass, height, centre of mass, root\n"
 	"  dofs      every dof: index, joint, kind and axis, limits, initial value\n"
@@ -42,7 +45,11 @@ static const char usage[] =
 	"  com       per posture, the centre of mass\n"
 	"  segments  per posture, every segment: its mass, the position of its centre\n"
 	"            of mass, its frame's position and rotation matrix (row-major)\n"
+	"  bounds    per posture, the bounding box of the posed meshes: min x y z, max x y z\n"
 	"  urdf      the figure as URDF (hierarchy of the current root; geometry with --out)\n"
+	"  gltf      the figure as binary glTF 2.0 with its meshes, posed as the initial\n"
+	"            (or --random) posture; with --q-file its postures become an\n"
+	"            animation, a keyframe every 0.5 s\n"
 	"  write     the figure in the figure language\n";
 
 struct options {
@@ -229,6 +236,33 @@ print_segments(const struct model *m, const struct state *s, int posture)
 	}
 }
 
+/* every segment's mesh placed by the posture: one bounding box, as a viewer sees the figure */
+static int
+print_bounds(const struct model *m, const struct state *s, int posture)
+{
+	double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+	for (int seg = 0; seg < m->nseg; seg++) {
+		struct seg_mesh mesh;
+		if (seg_mesh_build(m, seg, &mesh) < 0) {
+			fprintf(stderr, "posture-figure: out of memory\n");
+			return 1;
+		}
+		for (int v = 0; v < mesh.nvert; v++) {
+			double local[3] = { mesh.pos[3 * v], mesh.pos[3 * v + 1], mesh.pos[3 * v + 2] };
+			double w[3];
+			xform_apply(&s->seg_xf[seg], local, w);
+			for (int i = 0; i < 3; i++) {
+				lo[i] = fmin(lo[i], w[i]);
+				hi[i] = fmax(hi[i], w[i]);
+			}
+		}
+		seg_mesh_free(&mesh);
+	}
+	printf("bounds %d %.17g %.17g %.17g %.17g %.17g %.17g\n", posture, lo[0], lo[1], lo[2],
+	       hi[0], hi[1], hi[2]);
+	return 0;
+}
+
 /* the URDF to stdout, or with its meshes to files */
 static int
 write_urdf(const struct model *m, const struct state *s, const char *out)
@@ -259,6 +293,8 @@ per_posture(const struct model *m, const struct state *s, const char *cmd, int p
 		       s->com[2], m->total_mass);
 	else if (!strcmp(cmd, "summary"))
 		print_summary(m, s);
+	else if (!strcmp(cmd, "bounds"))
+		return print_bounds(m, s, posture);
 	else if (!strcmp(cmd, "urdf"))
 		return write_urdf(m, s, out);
 	else if (!strcmp(cmd, "write"))
@@ -323,6 +359,112 @@ set_root(const struct model *m, struct state *s, const char *root)
 	return kin_set_root(m, s, site);
 }
 
+/* the q-file, or standard input for '-'; NULL said on stderr */
+static FILE *
+qfile_open(const char *path)
+{
+	FILE *f = strcmp(path, "-") ? fopen(path, "r") : stdin;
+	if (!f)
+		fprintf(stderr, "posture-figure: %s: %s\n", path, strerror(errno));
+	return f;
+}
+
+static void
+qfile_close(FILE *f)
+{
+	if (f != stdin)
+		fclose(f);
+}
+
+/* every posture of a q-file, each a state of its own: for commands that take them all at once */
+struct postures {
+	struct state **s;
+	int n, cap;
+};
+
+static void
+postures_free(struct postures *p)
+{
+	for (int k = 0; k < p->n; k++)
+		state_free(p->s[k]);
+	free(p->s);
+	memset(p, 0, sizeof *p);
+}
+
+/*
+ * Reads the q-file's postures, each rooted as s (the root chosen in the
+ * initial posture stays fixed in space) with its global frames computed.
+ * 0, or -1 said on stderr (dest then holds none).
+ */
+static int
+postures_read(const struct model *m, const struct state *s, const char *qfile,
+	      struct postures *dest)
+{
+	memset(dest, 0, sizeof *dest);
+	FILE *f = qfile_open(qfile);
+	if (!f)
+		return -1;
+	int lineno = 0, got;
+	struct state *next = NULL;
+	for (;;) {
+		if (!next && !(next = state_make(m))) {
+			fprintf(stderr, "posture-figure: out of memory\n");
+			got = -1;
+			break;
+		}
+		state_copy(m, s, next);
+		if ((got = read_posture(f, m, next->q, &lineno)) <= 0)
+			break;
+		kin_update(m, next);
+		if (dest->n == dest->cap) {
+			int cap = dest->cap ? 2 * dest->cap : 64;
+			struct state **grown = realloc(dest->s, sizeof *grown * (size_t)cap);
+			if (!grown) {
+				fprintf(stderr, "posture-figure: out of memory\n");
+				got = -1;
+				break;
+			}
+			dest->s = grown;
+			dest->cap = cap;
+		}
+		dest->s[dest->n++] = next;
+		next = NULL;
+	}
+	state_free(next);
+	qfile_close(f);
+	if (got < 0)
+		postures_free(dest);
+	return got < 0 ? -1 : 0;
+}
+
+/* the glTF file: the posture now, and the q-file's postures as its animation */
+static int
+write_gltf(const struct model *m, const struct state *s, const char *qfile, const char *out)
+{
+	if (!out) {
+		fprintf(stderr, "posture-figure: gltf needs --out FILE.glb\n");
+		return 2;
+	}
+	struct postures p = { 0 };
+	if (qfile && postures_read(m, s, qfile, &p) < 0)
+		return 1;
+	if (qfile && !p.n) {
+		fprintf(stderr, "posture-figure: %s holds no posture\n", qfile);
+		return 1;
+	}
+	struct motion mo = { .name = m->name, .m = m, .now = s,
+			     .frames = (const struct state *const *)p.s, .nframes = p.n };
+	char err[512];
+	int rc = gltf_export(&mo, 1, MOTION_FRAME_SECONDS, out, err, sizeof err);
+	if (rc < 0)
+		fprintf(stderr, "posture-figure: %s\n", err);
+	else
+		fprintf(stderr, "posture-figure: %s written: %d segments, %d keyframes\n", out,
+			m->nseg, p.n);
+	postures_free(&p);
+	return rc < 0 ? 1 : 0;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -355,6 +497,11 @@ main(int argc, char **argv)
 			s->q[d] = m->dof_lo[d] + (m->dof_hi[d] - m->dof_lo[d]) * rand() / RAND_MAX;
 		kin_update(m, s);
 	}
+	/* the commands that take every posture at once */
+	if (!strcmp(o.command, "gltf")) {
+		rc = write_gltf(m, s, o.qfile, o.out);
+		goto out;
+	}
 	if (!o.qfile) {
 		int got = per_posture(m, s, o.command, 0, o.out);
 		if (got < 0)
@@ -362,9 +509,8 @@ main(int argc, char **argv)
 		rc = got < 0 ? 2 : got;
 		goto out;
 	}
-	FILE *f = strcmp(o.qfile, "-") ? fopen(o.qfile, "r") : stdin;
+	FILE *f = qfile_open(o.qfile);
 	if (!f) {
-		fprintf(stderr, "posture-figure: %s: %s\n", o.qfile, strerror(errno));
 		rc = 1;
 		goto out;
 	}
@@ -381,8 +527,7 @@ main(int argc, char **argv)
 	}
 	if (got < 0)
 		rc = 1;
-	if (f != stdin)
-		fclose(f);
+	qfile_close(f);
 out:
 	if (fflush(stdout) != 0)
 		rc = 1;

@@ -30,15 +30,28 @@ append(struct seg_mesh *dest, const struct tess_mesh *t, const struct view_part 
 	for (int v = 0; v < t->nvert; v++) {
 		const float *vn = t->vn + 6 * v;
 		double local[3] = { vn[0] * s[0], vn[1] * s[1], vn[2] * s[2] }, at[3];
-		/* normals go by the inverse transpose of the scale */
-		double n[3] = { vn[3] / s[0], vn[4] / s[1], vn[5] / s[2] }, rn[3];
+		/*
+		 * normals go by the inverse transpose of the scale, taken as its
+		 * cofactors (the same direction, signed by the determinant) so a
+		 * scale of 0, a geom flattened to a disc, still turns them right;
+		 * where even that leaves none (the rim of such a disc), the unscaled
+		 * normal stands in, so every normal is unit as glTF requires
+		 */
+		double sg = s[0] * s[1] * s[2] < 0 ? -1 : 1, rn[3];
+		double n[3] = { sg * vn[3] * s[1] * s[2], sg * vn[4] * s[0] * s[2],
+				sg * vn[5] * s[0] * s[1] };
 		xform_apply(&p->xf, local, at);
 		xform_rotate(&p->xf, n, rn);
 		double len = sqrt(rn[0] * rn[0] + rn[1] * rn[1] + rn[2] * rn[2]);
+		if (!(len > 1e-12)) {
+			double raw[3] = { vn[3], vn[4], vn[5] };
+			xform_rotate(&p->xf, raw, rn);
+			len = sqrt(rn[0] * rn[0] + rn[1] * rn[1] + rn[2] * rn[2]);
+		}
 		float *dp = dest->pos + 3 * (dest->nvert + v), *dn = dest->nrm + 3 * (dest->nvert + v);
 		for (int i = 0; i < 3; i++) {
 			dp[i] = (float)at[i];
-			dn[i] = (float)(len > 0 ? rn[i] / len : 0);
+			dn[i] = (float)(rn[i] / len);
 		}
 	}
 	for (int i = 0; i < t->nidx; i++)

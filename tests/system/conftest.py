@@ -68,3 +68,29 @@ def random_postures(dofs, n, seed):
     lo = np.array([d[1] for d in dofs])
     hi = np.array([d[2] for d in dofs])
     return lo + (hi - lo) * rng.random((n, len(dofs)))
+
+
+def read_segments(text):
+    """posture-figure segments -> list (per posture) of {segment: 4x4 frame}"""
+    postures = []
+    for line in text.splitlines():
+        if line.startswith("posture "):
+            postures.append({})
+            continue
+        f = line.split()
+        v = np.array([float(x) for x in f[5:]])
+        frame = np.eye(4)
+        frame[:3, 3] = v[:3]
+        frame[:3, :3] = v[3:].reshape(3, 3)
+        postures[-1][f[0]] = frame
+    return postures
+
+
+def quat_matrix(q):
+    """the rotation matrix of a quaternion (x, y, z, w), normalised first"""
+    q = np.asarray(q, dtype=float)
+    x, y, z, w = q / np.linalg.norm(q)
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
