@@ -13,6 +13,7 @@
 #include "figure/kin.h"
 #include "figure/model.h"
 #include "figure/state.h"
+#include "export/bvh.h"
 #include "export/gltf.h"
 #include "export/seg_mesh.h"
 #include "export/urdf.h"
@@ -36,6 +37,7 @@ static const char usage[] =
 	"  --out FILE.urdf       urdf: write FILE.urdf and each segment's mesh beside it\n"
 	"                        (FILE_SEGMENT.stl) instead of the URDF alone to stdout\n"
 	"  --out FILE.glb        gltf: the file to write (required)\n"
+	"  --out FILE.bvh        bvh: the file to write (required)\n"
 	"commands:\n"
 	"  summary   counts, mass, height, centre of mass, root\n"
 	"  dofs      every dof: index, joint, kind and axis, limits, initial value\n"
@@ -50,6 +52,8 @@ static const char usage[] =
 	"  gltf      the figure as binary glTF 2.0 with its meshes, posed as the initial\n"
 	"            (or --random) posture; with --q-file its postures become an\n"
 	"            animation, a keyframe every 0.5 s\n"
+	"  bvh       the figure's skeleton and the --q-file's postures as BVH motion\n"
+	"            frames, 0.5 s apart (without --q-file, the posture alone)\n"
 	"  write     the figure in the figure language\n";
 
 struct options {
@@ -437,12 +441,18 @@ postures_read(const struct model *m, const struct state *s, const char *qfile,
 	return got < 0 ? -1 : 0;
 }
 
-/* the glTF file: the posture now, and the q-file's postures as its animation */
+/*
+ * The commands that take every posture at once: gltf (the posture now in
+ * its nodes, the q-file's postures as its animation) and bvh (the q-file's
+ * postures as its frames; without one, the posture now alone).
+ */
 static int
-write_gltf(const struct model *m, const struct state *s, const char *qfile, const char *out)
+write_motion(const struct model *m, const struct state *s, const char *cmd, const char *qfile,
+	     const char *out)
 {
+	const char *ext = !strcmp(cmd, "gltf") ? "glb" : "bvh";
 	if (!out) {
-		fprintf(stderr, "posture-figure: gltf needs --out FILE.glb\n");
+		fprintf(stderr, "posture-figure: %s needs --out FILE.%s\n", cmd, ext);
 		return 2;
 	}
 	struct postures p = { 0 };
@@ -452,15 +462,25 @@ write_gltf(const struct model *m, const struct state *s, const char *qfile, cons
 		fprintf(stderr, "posture-figure: %s holds no posture\n", qfile);
 		return 1;
 	}
+	const struct state *only[1] = { s };
 	struct motion mo = { .name = m->name, .m = m, .now = s,
 			     .frames = (const struct state *const *)p.s, .nframes = p.n };
 	char err[512];
-	int rc = gltf_export(&mo, 1, MOTION_FRAME_SECONDS, out, err, sizeof err);
+	int rc;
+	if (ext[0] == 'g') {
+		rc = gltf_export(&mo, 1, MOTION_FRAME_SECONDS, out, err, sizeof err);
+	} else {
+		if (!p.n) {
+			mo.frames = only;
+			mo.nframes = 1;
+		}
+		rc = bvh_export(&mo, MOTION_FRAME_SECONDS, out, err, sizeof err);
+	}
 	if (rc < 0)
 		fprintf(stderr, "posture-figure: %s\n", err);
 	else
-		fprintf(stderr, "posture-figure: %s written: %d segments, %d keyframes\n", out,
-			m->nseg, p.n);
+		fprintf(stderr, "posture-figure: %s written: %d segments, %d frames\n", out,
+			m->nseg, mo.nframes);
 	postures_free(&p);
 	return rc < 0 ? 1 : 0;
 }
@@ -498,8 +518,8 @@ main(int argc, char **argv)
 		kin_update(m, s);
 	}
 	/* the commands that take every posture at once */
-	if (!strcmp(o.command, "gltf")) {
-		rc = write_gltf(m, s, o.qfile, o.out);
+	if (!strcmp(o.command, "gltf") || !strcmp(o.command, "bvh")) {
+		rc = write_motion(m, s, o.command, o.qfile, o.out);
 		goto out;
 	}
 	if (!o.qfile) {

@@ -183,19 +183,17 @@ write_frame(FILE *f, const struct model *m, const struct state *tree, const int 
 		channel_axes(m, j, axes);
 		const struct xform *node = &pose->site_xf[node_site(m, tree, seg)];
 		struct xform rel = *node;
-		double base[3] = { 0, 0, 0 };
 		if (j >= 0) {
-			int parent = tree->seg_parent[seg];
 			struct xform inv;
-			xform_inv(&pose->site_xf[node_site(m, tree, parent)], &inv);
+			xform_inv(&pose->site_xf[node_site(m, tree, tree->seg_parent[seg])], &inv);
 			xform_mul(&inv, node, &rel);
-			offset_between(m, node_site(m, tree, parent), pivot_site(m, tree, seg), base);
 		}
 		double deg[3];
 		euler_of(rel.r, axes, deg);
+		/* position channels place the joint in its parent: they stand for its OFFSET
+		 * (as Blender's and bvhio's readers take them), they do not add to it */
 		if (j < 0 || has_translation(m, j))
-			fprintf(f, "%.9f %.9f %.9f ", rel.p[0] - base[0], rel.p[1] - base[1],
-				rel.p[2] - base[2]);
+			fprintf(f, "%.9f %.9f %.9f ", rel.p[0], rel.p[1], rel.p[2]);
 		fprintf(f, "%.9f %.9f %.9f%s", deg[0], deg[1], deg[2], i + 1 < m->nseg ? " " : "\n");
 	}
 }

@@ -8,7 +8,10 @@
  * joint below ends in an End Site at its site farthest from its joint.
  * Each joint has three rotation channels, ordered as its rotation dofs are
  * (the axes it lacks after them), plus three position channels where it
- * has a translation dof; the ROOT has three position channels first. Where
+ * has a translation dof; the ROOT has three position channels first.
+ * Position channels are where the joint sits in its parent, in place of
+ * its OFFSET (which is where it sits with its dofs at zero), as readers
+ * such as Blender's and bvhio take them. Where
  * a joint's two sites are parallel (the human's are), the rotation
  * channels are the dof values themselves (times the dof's sign).
  */

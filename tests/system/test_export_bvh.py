@@ -13,7 +13,7 @@ import shutil
 import numpy as np
 import pytest
 
-from conftest import BUILD, run_tool
+from conftest import BUILD, FIGURE_ARGS, random_postures, read_dofs, read_sites, run_tool
 from daemon import PostureError, daemon, daemon_factory  # noqa: F401 (fixtures)
 
 bvhio = pytest.importorskip("bvhio")
@@ -89,6 +89,44 @@ def test_bvhio_reads_the_history_back(daemon, root):
         for joint, pos in want.items():
             p = by_name[joint].PositionWorld
             worst = max(worst, np.abs(np.array([p.x, p.y, p.z]) - pos).max())
+    assert worst < TOL, f"a BVH joint is {worst:.3g} m from ours"
+
+
+def read_joint_sites(args):
+    """posture-figure joints -> {joint: its child-side site}"""
+    return {f[0]: f[2] for f in (line.split() for line in run_tool(*args, "joints").splitlines())
+            if f and not f[0].startswith("#")}
+
+
+# the shared figures, and the human hung from a heel (its joints then run inverted)
+BVH_FIGURES = dict(FIGURE_ARGS, **{"human-heel": ["--human", "--root", "foot_r.heel"]})
+
+
+@pytest.mark.parametrize("figure", sorted(BVH_FIGURES))
+def test_bvhio_reads_postures_back(figure, tmp_path):
+    """posture-figure bvh: 20 random postures as frames (the vehicle seat's track slides:
+    position channels); bvhio puts every joint where the figure has it, to 1e-6 m."""
+    args = BVH_FIGURES[figure]
+    dofs = read_dofs(args)
+    qs = random_postures(dofs, 20 if dofs else 1, seed=3)
+    qfile = tmp_path / "q.txt"
+    qfile.write_text("\n".join(" ".join(repr(float(v)) for v in q) for q in qs) + "\n")
+    posture = ["--q-file", qfile] if dofs else []
+    out = tmp_path / f"{figure}.bvh"
+    run_tool(*args, *posture, "--out", out, "bvh")
+    OUTPUT.mkdir(parents=True, exist_ok=True)
+    shutil.copy(out, OUTPUT / out.name)
+    sites = read_sites(run_tool(*args, *posture, "sites"))
+    joint_site = read_joint_sites(args)
+    skeleton = bvhio.readAsHierarchy(str(out))
+    by_name = {joint.Name: joint for joint, _, _ in skeleton.layout()}
+    assert set(joint_site) <= set(by_name)
+    worst = 0.0
+    for k, want in enumerate(sites):
+        skeleton.loadPose(k)
+        for joint, site in joint_site.items():
+            p = by_name[joint].PositionWorld
+            worst = max(worst, np.abs(np.array([p.x, p.y, p.z]) - want[site][0]).max())
     assert worst < TOL, f"a BVH joint is {worst:.3g} m from ours"
 
 
