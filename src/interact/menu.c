@@ -103,6 +103,7 @@ static const struct group_key group_table[] = {
 	{ "save", "session", G_FILES },
 	{ "load", "session", G_FILES },
 	{ "export", "urdf", G_FILES },
+	{ "export", "gltf", G_FILES },
 	{ "export", "bvh", G_FILES },
 	{ "undo", "", G_FILES },
 	{ "redo", "", G_FILES },

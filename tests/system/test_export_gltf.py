@@ -23,6 +23,8 @@ import pytest
 from conftest import (BUILD, FIGURE_ARGS, ROOT, quat_matrix, random_postures, read_dofs,
                       read_segments, run_tool)
 
+from daemon import PostureError, daemon, daemon_factory  # noqa: F401 (fixtures)
+
 trimesh = pytest.importorskip("trimesh")
 
 TOL = 1e-6
@@ -298,3 +300,79 @@ def test_bad_request_writes_nothing(case, tmp_path):
     assert proc.returncode != 0
     assert says in proc.stderr, proc.stderr
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["file"]
+
+
+# ---- over the socket: the environment and its history -------------------------
+
+def test_daemon_exports_the_environment_and_its_history(daemon_factory):
+    """`export gltf * PATH session`: a human posed step by step beside a chair that comes
+    in half way. The validator reports nothing; the animation has a keyframe a history
+    step; at each one the human's segments are where ours are for the joint values the
+    daemon reported at that step, and the chair, absent before it came, holds its place."""
+    daemon = daemon_factory(extra=["--library", str(ROOT / "src" / "figure" / "library")])
+    c = daemon.client()
+    c.request("load human as jack")
+    dofs = read_dofs(["--human"])
+    rng = np.random.default_rng(31)
+    steps = []
+
+    def posture():
+        got = c.request("get posture jack")["posture"]
+        return [got[name.rsplit("__", 1)[0]][int(name.rsplit("__", 1)[1])] for name, _, _ in dofs]
+
+    for k, joint in enumerate(["knee_l", "shoulder_r", "hip_r", "elbow_l"]):
+        steps.append(posture())
+        if k == 2:
+            c.request("load figure lib:chair.fig as chair")
+            steps.append(posture())
+        lo, hi = zip(*[(lo, hi) for name, lo, hi in dofs if name.startswith(joint + "__")])
+        c.request(f"set joint jack {joint} " + " ".join(repr(float(v)) for v in rng.uniform(lo, hi)))
+    steps.append(posture())
+    got = c.request("export gltf * scene.glb session")
+    # the first undo step is the empty environment: it holds the first posture
+    assert got == {"path": "scene.glb", "figures": 2, "frames": len(steps) + 1}
+    path = daemon.state_dir / "scene.glb"
+    OUTPUT.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(path, OUTPUT / "environment-session.glb")
+    issues = validate(path)["issues"]
+    assert issues["numErrors"] == 0 and issues["numWarnings"] == 0, issues["messages"][:20]
+
+    doc, binary = read_glb(path)
+    tops = {doc["nodes"][i]["name"]: i for i in doc["scenes"][0]["nodes"]}
+    assert set(tops) == {"jack", "chair"}
+    qfile = daemon.dir / "steps.q"
+    qfile.write_text("\n".join(" ".join(repr(v) for v in q) for q in [steps[0]] + steps) + "\n")
+    ours = read_segments(run_tool("--human", "--q-file", qfile, "segments"))
+    chair = read_segments(run_tool(*FIGURE_ARGS["chair"], "segments"))[0]
+    worst = 0.0
+    for k, want in enumerate(ours):
+        world = world_frames(doc, pose_at(doc, binary, k * FRAME_SECONDS))
+        jack = {doc["nodes"][i]["name"]: w for i, w in world.items()
+                if i in subtree(doc, tops["jack"]) and doc["nodes"][i]["name"] in want}
+        worst = max(worst, max(np.abs(jack[s] - want[s]).max() for s in want))
+        worst = max(worst, np.abs(world[doc["nodes"][tops["chair"]]["children"][0]]
+                                  - chair["chair"]).max())
+    assert worst < TOL, f"a keyframe puts a segment {worst:.3g} from ours"
+
+
+def subtree(doc, i):
+    """node i and every node below it"""
+    out = {i}
+    for c in doc["nodes"][i].get("children", []):
+        out |= subtree(doc, c)
+    return out
+
+
+def test_daemon_gltf_refusals_write_nothing(daemon):
+    c = daemon.client()
+    c.request("load human as jack")
+    before = sorted(p.name for p in daemon.state_dir.iterdir())
+    for line, code in [("export gltf jack x.glb session", "nothing"),  # no history yet
+                       ("export gltf jack x.glb pose", "bad-argument"),
+                       ("export gltf jack x.gltf", "bad-argument"),
+                       ("export gltf nobody x.glb", "not-found"),
+                       ("export gltf * ../x.glb", "denied")]:
+        with pytest.raises(PostureError) as e:
+            c.request(line)
+        assert e.value.code == code, (line, e.value)
+    assert sorted(p.name for p in daemon.state_dir.iterdir()) == before
