@@ -1,7 +1,8 @@
 /*
  * kms_pick.h - what the DRM/KMS sink decides, apart from the device: which
- * connector, mode and CRTC show the kiosk, and which of its two buffers a
- * frame goes into while a flip may be in flight. Plain structs, filled from
+ * connector, mode and CRTC show the kiosk, which of its two buffers a frame
+ * goes into while a flip may be in flight, and each frame's time from its
+ * render to its flip request. Plain structs, filled from
  * libdrm's by sink_kms.c and by the tests directly.
  */
 #ifndef POSTURE_DRAW_KMS_PICK_H
