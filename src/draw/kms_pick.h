@@ -113,7 +113,7 @@ struct kms_times {
 	uint64_t n; /* frames timed: flip requests made */
 };
 
-/* each part's median and p99 over the kept frames, and the frames timed in all */
+/* each part's median, p99 and max over the kept frames, and the frames timed in all */
 struct kms_times_summary {
 	uint64_t n;
 	int kept; /* frames the figures are over: the newest, KMS_TIMES at most */
