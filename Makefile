@@ -266,7 +266,7 @@ $(PEER_BENCH): $(BUILD)/rel/bench/%: tools/bench/%.cpp | deps
 
 # C benchmarks that need no peer run on their own; the others are run by the
 # Python orchestrators (tools/bench/*.py), which measure ours and the peers (and
-# kernel_latency.py runs a guest program in the kernel tier's QEMU guest)
+# kernel_latency.py and kms_flip_bench.py run guest programs in the kernel tier's QEMU guest)
 BENCH_STANDALONE := $(BUILD)/rel/bench/ik_body $(BUILD)/rel/bench/behave_bench $(BUILD)/rel/bench/interact_bench \
 	$(BUILD)/rel/bench/pick_bench $(BUILD)/rel/bench/hemi_bench $(BUILD)/rel/bench/display_bench
 

@@ -37,6 +37,7 @@ struct gate_sink {
 	int closed;
 	int n;
 	uint64_t seq[SEEN_MAX];
+	uint64_t done[SEEN_MAX]; /* their done_us */
 	uint8_t first[SEEN_MAX][4];
 	int w[SEEN_MAX], h[SEEN_MAX];
 };
@@ -57,6 +58,7 @@ gate_write(struct sink *s, const struct frame *f, char *err, size_t errlen)
 		rc = -1;
 	} else if (g->n < SEEN_MAX) {
 		g->seq[g->n] = f->seq;
+		g->done[g->n] = f->done_us;
 		memcpy(g->first[g->n], f->rgba, 4);
 		g->w[g->n] = f->width;
 		g->h[g->n] = f->height;
@@ -200,6 +202,33 @@ test_frame_is_copied(void **state)
 	assert_int_equal(g.w[0], W);
 	assert_int_equal(g.h[0], H);
 	assert_memory_equal(g.first[0], want, 4);
+	frame_writer_free(w);
+	gate_destroy(&g);
+}
+
+/* a frame is stamped as finished when handed over, unless it came stamped */
+static void
+test_handed_over_is_stamped(void **state)
+{
+	(void)state;
+	static uint8_t buf[4 * 4 * 4];
+	struct gate_sink g;
+	gate_init(&g);
+	struct frame_writer *w = writer();
+	char err[256];
+	assert_int_equal(frame_writer_attach(w, 0, &g.base, 4, 4, err, sizeof err), 0);
+	struct frame f = make_frame(buf, 4, 4, 0, 1);
+	uint64_t before = frame_now_us();
+	assert_int_equal(frame_writer_submit(w, 0, &f, err, sizeof err), 0);
+	uint64_t after = frame_now_us();
+	frame_writer_flush(w);
+	f = make_frame(buf, 4, 4, 0, 2);
+	f.done_us = 1234;
+	assert_int_equal(frame_writer_submit(w, 0, &f, err, sizeof err), 0);
+	frame_writer_flush(w);
+	assert_int_equal(g.n, 2);
+	assert_in_range(g.done[0], before, after);
+	assert_int_equal(g.done[1], 1234);
 	frame_writer_free(w);
 	gate_destroy(&g);
 }
@@ -513,6 +542,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_latest_wins),
 		cmocka_unit_test(test_frame_is_copied),
+		cmocka_unit_test(test_handed_over_is_stamped),
 		cmocka_unit_test(test_free_flushes_newest),
 		cmocka_unit_test(test_error_reported),
 		cmocka_unit_test(test_refusals),

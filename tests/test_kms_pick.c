@@ -1,7 +1,7 @@
 /*
  * test_kms_pick.c - the KMS sink's choices (draw/kms_pick.h) on plain
  * structs: the connector, mode and CRTC a kiosk's card gives, what a
- * setting asks for, and the two buffers' flips.
+ * setting asks for, the two buffers' flips, and each frame's way to its flip.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -124,6 +124,61 @@ test_two_buffers_one_flip_in_flight(void **state)
 	assert_int_equal(f.flips, 1);
 }
 
+static void
+test_render_to_flip_in_its_parts(void **state)
+{
+	(void)state;
+	static struct kms_times t; /* large for a test's stack */
+	struct kms_times_summary sum;
+	kms_times_sum(&t, &sum);
+	assert_int_equal(sum.kept, 0);
+	assert_int_equal(sum.median.total, 0);
+	/* handed at 1000, taken at 1300, the last flip in at 1400, copied by 3400, asked by 3450 */
+	kms_times_add(&t, 1000, 1300, 1400, 3400, 3450);
+	kms_times_sum(&t, &sum);
+	assert_int_equal(sum.n, 1);
+	assert_int_equal(sum.median.total, 2450);
+	assert_int_equal(sum.median.queue, 300);
+	assert_int_equal(sum.median.wait, 100);
+	assert_int_equal(sum.median.copy, 2000);
+	assert_int_equal(sum.median.ioctl, 50);
+	/* not stamped (a caller writing directly), or stamped later than the write began */
+	memset(&t, 0, sizeof t);
+	kms_times_add(&t, 0, 5000, 5000, 5100, 5110);
+	kms_times_add(&t, 9000, 5000, 5000, 5100, 5110);
+	kms_times_sum(&t, &sum);
+	assert_int_equal(sum.max.total, 110);
+	assert_int_equal(sum.max.queue, 0);
+	/* a stamp before the one before it counts as that one: the parts add up */
+	memset(&t, 0, sizeof t);
+	kms_times_add(&t, 100, 200, 150, 400, 390);
+	kms_times_sum(&t, &sum);
+	assert_int_equal(sum.median.total, 300);
+	assert_int_equal(sum.median.queue, 100);
+	assert_int_equal(sum.median.wait, 0);
+	assert_int_equal(sum.median.copy, 200);
+	assert_int_equal(sum.median.ioctl, 0);
+}
+
+static void
+test_the_newest_frames_kept_median_and_p99(void **state)
+{
+	(void)state;
+	static struct kms_times t;
+	struct kms_times_summary sum;
+	/* 1000 frames: totals 1..1000 us; the ring keeps the newest 256 (745..1000) */
+	for (uint64_t i = 1; i <= 1000; i++)
+		kms_times_add(&t, 10000 * i, 10000 * i, 10000 * i, 10000 * i + i, 10000 * i + i);
+	kms_times_sum(&t, &sum);
+	assert_int_equal(sum.n, 1000);
+	assert_int_equal(sum.kept, KMS_TIMES);
+	assert_int_equal(sum.median.total, 745 + KMS_TIMES / 2);
+	assert_int_equal(sum.p99.total, 745 + (KMS_TIMES * 99) / 100);
+	assert_int_equal(sum.max.total, 1000);
+	assert_int_equal(sum.max.copy, 1000);
+	assert_int_equal(sum.max.ioctl, 0);
+}
+
 int
 main(void)
 {
@@ -132,6 +187,8 @@ main(void)
 		cmocka_unit_test(test_what_a_setting_asks_for),
 		cmocka_unit_test(test_nothing_connected_or_no_crtc_is_said),
 		cmocka_unit_test(test_two_buffers_one_flip_in_flight),
+		cmocka_unit_test(test_render_to_flip_in_its_parts),
+		cmocka_unit_test(test_the_newest_frames_kept_median_and_p99),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

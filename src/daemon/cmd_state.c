@@ -7,6 +7,7 @@
 
 #include "daemon/cmd_ctx.h"
 #include "draw/frame_writer.h"
+#include "draw/kms_pick.h"
 #include "daemon/posture_hash.h"
 #include "daemon/session.h"
 #include "daemon/statefile.h"
@@ -203,6 +204,19 @@ latency(struct daemon *d)
 			 "n", n);
 }
 
+/* finished render to flip request on a KMS screen, us, over its newest frames; null: none */
+static json_t *
+flip_times(struct daemon *d)
+{
+	struct kms_times_summary t;
+	if (!d->flip_times || d->flip_times(d, &t) < 0 || !t.n)
+		return json_null();
+	return json_pack("{sIsIsIsIsIsIsI}", "median", (json_int_t)t.median.total, "p99",
+			 (json_int_t)t.p99.total, "queue", (json_int_t)t.median.queue, "wait",
+			 (json_int_t)t.median.wait, "copy", (json_int_t)t.median.copy, "ioctl",
+			 (json_int_t)t.median.ioctl, "n", (json_int_t)t.n);
+}
+
 int
 cmd_status(struct cmd_ctx *c)
 {
@@ -221,6 +235,7 @@ cmd_status(struct cmd_ctx *c)
 	json_object_set_new(c->result, "frames_written", json_integer((json_int_t)s->frames_written));
 	json_object_set_new(c->result, "frames_dropped", json_integer((json_int_t)s->frames_dropped));
 	json_object_set_new(c->result, "latency_ms", latency(c->d));
+	json_object_set_new(c->result, "flip_us", flip_times(c->d));
 	json_object_set_new(c->result, "budget_us", json_integer((json_int_t)s->budget_us));
 	json_object_set_new(c->result, "clients", json_integer(s->clients));
 	json_object_set_new(c->result, "figures", json_integer(env_count(&c->d->env)));

@@ -20,6 +20,8 @@
 #include "interact/pick.h"
 #include "pose/env.h"
 
+struct kms_times_summary; /* draw/kms_pick.h */
+
 #define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
 #define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
 #define VIEW_MAX_H 1200
@@ -113,6 +115,8 @@ struct daemon {
 			   size_t errlen);
 	/* input to pixels on the framebuffer: the newest samples (us), oldest first; NULL: none */
 	int (*input_latencies)(struct daemon *d, uint64_t *dest, int max);
+	/* the KMS screen's render-to-flip times (draw/kms_pick.h): 0, or -1: no KMS screen */
+	int (*flip_times)(struct daemon *d, struct kms_times_summary *dest);
 	/* the kiosk's screen now, as the framebuffer shows it (a layout's views tiled) */
 	int (*render_screen)(struct daemon *d, const struct frame **dest, char *err, size_t errlen);
 	char message[256]; /* the message line under the pictures (§1.7) */

@@ -144,6 +144,13 @@ input_latencies(struct daemon *d, uint64_t *dest, int max)
 }
 
 static int
+flip_times(struct daemon *d, struct kms_times_summary *dest)
+{
+	struct loop *L = d->loop;
+	return scene_flip_times(&L->scene, dest);
+}
+
+static int
 render_screen(struct daemon *d, const struct frame **dest, char *err, size_t errlen)
 {
 	struct loop *L = d->loop;
@@ -562,6 +569,7 @@ loop_setup(struct loop *L, const struct loop_config *cfg)
 	L->d.render_view = render_view;
 	L->d.render_screen = render_screen;
 	L->d.input_latencies = input_latencies;
+	L->d.flip_times = flip_times;
 	L->d.set_input = set_input;
 	L->d.record = loop_record;
 	L->d.recording = loop_recording;

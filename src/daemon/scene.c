@@ -621,6 +621,16 @@ scene_latencies(struct scene *sc, uint64_t *dest, int max)
 	return sc->screen ? frame_writer_latencies(sc->screen, dest, max) : 0;
 }
 
+int
+scene_flip_times(struct scene *sc, struct kms_times_summary *dest)
+{
+	struct sink *s = sc->screen ? frame_writer_sink(sc->screen, 0) : sc->fb;
+	if (!s || strcmp(s->ops->name, "kms"))
+		return -1;
+	sink_kms_times(s, dest);
+	return 0;
+}
+
 void
 scene_sync(struct scene *sc, struct daemon *d, struct events *E)
 {

@@ -78,6 +78,9 @@ void scene_init(struct scene *sc, const char *frames_dir);
  */
 int scene_latencies(struct scene *sc, uint64_t *dest, int max);
 
+/* the KMS screen's render-to-flip times (sink_kms_times): 0, or -1 when the screen is not KMS */
+int scene_flip_times(struct scene *sc, struct kms_times_summary *dest);
+
 void scene_free(struct scene *sc);
 /*
  * The screen given up (held 1: the VT switched away; frames wait, a KMS

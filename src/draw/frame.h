@@ -10,6 +10,7 @@
 #define POSTURE_FRAME_H
 
 #include <stdint.h>
+#include <time.h>
 
 struct frame {
 	int width, height; /* pixels */
@@ -20,7 +21,19 @@ struct frame {
 	/* CLOCK_MONOTONIC of the oldest input event this frame is the first to show, 0: none
 	 * (for the input-to-pixels latency, measured when a sink has written it) */
 	uint64_t input_us;
+	/* CLOCK_MONOTONIC when the render was finished and handed over (0: not yet; the frame
+	 * writer stamps it on submit), for the render-to-flip time the KMS sink measures */
+	uint64_t done_us;
 };
+
+/* CLOCK_MONOTONIC now, us: the clock of input_us and done_us */
+static inline uint64_t
+frame_now_us(void)
+{
+	struct timespec t;
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+}
 
 /* a w x h frame over buf with tightly packed rows (stride 4 * w), seq and times 0 */
 static inline void
@@ -33,6 +46,7 @@ frame_init(struct frame *f, int w, int h, uint8_t *buf)
 	f->seq = 0;
 	f->t_us = 0;
 	f->input_us = 0;
+	f->done_us = 0;
 }
 
 #endif

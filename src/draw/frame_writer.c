@@ -63,14 +63,6 @@ struct frame_writer {
 	char err[256];	 /* the newest one's message */
 };
 
-static uint64_t
-monotonic_us(void)
-{
-	struct timespec t;
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
-}
-
 int
 frame_writer_latencies(struct frame_writer *w, uint64_t *dest, int max)
 {
@@ -123,7 +115,7 @@ frame_writer_pass(struct frame_writer *w)
 
 		char err[sizeof w->err];
 		int r = sink ? sink_write(sink, &s->f[s->front], err, sizeof err) : 0;
-		uint64_t input_us = s->f[s->front].input_us, now = input_us ? monotonic_us() : 0;
+		uint64_t input_us = s->f[s->front].input_us, now = input_us ? frame_now_us() : 0;
 		if (r == 0 && sink)
 			atomic_fetch_add(&w->written, 1);
 		else if (!sink)
@@ -326,6 +318,8 @@ frame_writer_submit(struct frame_writer *w, int slot, const struct frame *f, cha
 	}
 	if (sink_frame_check(f, err, errlen) < 0)
 		return -1;
+	/* the render counts as finished now, as it is handed over (before the copy below) */
+	uint64_t done_us = f->done_us ? f->done_us : frame_now_us();
 	struct frame_writer_slot *s = &w->slot[slot];
 	/* the sink is the caller's to set, so it reads it without the lock */
 	if (!s->sink) {
@@ -348,6 +342,7 @@ frame_writer_submit(struct frame_writer *w, int slot, const struct frame *f, cha
 	d->seq = f->seq;
 	d->t_us = f->t_us;
 	d->input_us = f->input_us;
+	d->done_us = done_us;
 
 	/* the newest frame wins: one still fresh in mid is replaced */
 	unsigned old = atomic_exchange(&s->mid, (unsigned)s->back | FRESH);

@@ -62,6 +62,7 @@ int frame_writer_attach(struct frame_writer *w, int slot, struct sink *s, int ma
  * frame still waiting there, and returns at once. A frame larger than the
  * slot's buffers grows them (the view was made larger). Returns 0, or -1
  * with err for a slot without a sink, a frame sinks refuse, or no memory.
+ * A frame with done_us 0 gets the time of the call (CLOCK_MONOTONIC, us).
  */
 int frame_writer_submit(struct frame_writer *w, int slot, const struct frame *f, char *err,
 			size_t errlen);

@@ -2,6 +2,7 @@
 #include "draw/kms_pick.h"
 
 #include <stdarg.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -132,4 +133,74 @@ kms_flips_done(struct kms_flips *f)
 	f->in_flight = 0;
 	f->front = 1 - f->front;
 	f->flips++;
+}
+
+/* b - a in us, 0 when b is earlier, saturated */
+static uint32_t
+span(uint64_t a, uint64_t b)
+{
+	uint64_t d = b > a ? b - a : 0;
+	return d > UINT32_MAX ? UINT32_MAX : (uint32_t)d;
+}
+
+void
+kms_times_add(struct kms_times *t, uint64_t handed, uint64_t began, uint64_t waited,
+	      uint64_t copied, uint64_t asked)
+{
+	if (!handed || handed > began)
+		handed = began;
+	/* each stamp no earlier than the one before: the parts add up to the total */
+	waited = waited > began ? waited : began;
+	copied = copied > waited ? copied : waited;
+	asked = asked > copied ? asked : copied;
+	t->ring[t->n++ % KMS_TIMES] = (struct kms_frame_time){
+		span(handed, asked), span(handed, began), span(began, waited), span(waited, copied),
+		span(copied, asked) };
+}
+
+/* a frame's time as its parts in the struct's order, and back */
+enum { PARTS = 5 };
+
+static void
+parts_of(const struct kms_frame_time *f, uint32_t *p)
+{
+	p[0] = f->total, p[1] = f->queue, p[2] = f->wait, p[3] = f->copy, p[4] = f->ioctl;
+}
+
+static struct kms_frame_time
+time_of(const uint32_t *p)
+{
+	return (struct kms_frame_time){ p[0], p[1], p[2], p[3], p[4] };
+}
+
+static int
+by_value(const void *a, const void *b)
+{
+	uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+	return (x > y) - (x < y);
+}
+
+void
+kms_times_sum(const struct kms_times *t, struct kms_times_summary *dest)
+{
+	memset(dest, 0, sizeof *dest);
+	dest->n = t->n;
+	dest->kept = (int)(t->n < KMS_TIMES ? t->n : KMS_TIMES);
+	if (!dest->kept)
+		return;
+	uint32_t v[KMS_TIMES], p[PARTS], med[PARTS], p99[PARTS], max[PARTS];
+	int n = dest->kept;
+	for (int k = 0; k < PARTS; k++) {
+		for (int i = 0; i < n; i++) {
+			parts_of(&t->ring[i], p);
+			v[i] = p[k];
+		}
+		qsort(v, (size_t)n, sizeof *v, by_value);
+		med[k] = v[n / 2];
+		p99[k] = v[(n * 99) / 100];
+		max[k] = v[n - 1];
+	}
+	dest->median = time_of(med);
+	dest->p99 = time_of(p99);
+	dest->max = time_of(max);
 }

@@ -1,7 +1,8 @@
 /*
  * kms_pick.h - what the DRM/KMS sink decides, apart from the device: which
- * connector, mode and CRTC show the kiosk, and which of its two buffers a
- * frame goes into while a flip may be in flight. Plain structs, filled from
+ * connector, mode and CRTC show the kiosk, which of its two buffers a frame
+ * goes into while a flip may be in flight, and each frame's time from its
+ * render to its flip request. Plain structs, filled from
  * libdrm's by sink_kms.c and by the tests directly.
  */
 #ifndef POSTURE_DRAW_KMS_PICK_H
@@ -91,5 +92,43 @@ int kms_flips_back(const struct kms_flips *f);
 void kms_flips_asked(struct kms_flips *f);
 /* ... and it happened: the back buffer is shown */
 void kms_flips_done(struct kms_flips *f);
+
+/*
+ * A frame's way from the finished render to its flip request, in its
+ * parts (us, CLOCK_MONOTONIC): the newest KMS_TIMES frames kept in a ring,
+ * so the frame path never allocates; figures over them on demand.
+ */
+#define KMS_TIMES 256
+
+struct kms_frame_time {
+	uint32_t total; /* render handed over -> the flip request returned */
+	uint32_t queue; /* handed over -> the sink's write began (the writer's thread took it) */
+	uint32_t wait;  /* the previous flip's event waited for */
+	uint32_t copy;  /* the frame converted into the back buffer */
+	uint32_t ioctl; /* the flip request itself (drmModePageFlip) */
+};
+
+struct kms_times {
+	struct kms_frame_time ring[KMS_TIMES];
+	uint64_t n; /* frames timed: flip requests made */
+};
+
+/* each part's median, p99 and max over the kept frames, and the frames timed in all */
+struct kms_times_summary {
+	uint64_t n;
+	int kept; /* frames the figures are over: the newest, KMS_TIMES at most */
+	struct kms_frame_time median, p99, max;
+};
+
+/*
+ * One frame timed from its stamps: handed (0: unknown, then the write's
+ * beginning), began (the write), waited (the last flip's event in),
+ * copied, asked (the flip request returned). A stamp earlier than the one
+ * before it counts as that one.
+ */
+void kms_times_add(struct kms_times *t, uint64_t handed, uint64_t began, uint64_t waited,
+		   uint64_t copied, uint64_t asked);
+/* the figures so far; all 0 before the first frame */
+void kms_times_sum(const struct kms_times *t, struct kms_times_summary *dest);
 
 #endif

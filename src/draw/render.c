@@ -792,6 +792,7 @@ render_frame(struct render *r, const struct drawlist *dl, uint64_t t_us, struct 
 	dest->seq = ++r->seq;
 	dest->t_us = t_us;
 	dest->input_us = 0; /* the caller's to set: which input the picture is the first to show */
+	dest->done_us = 0;  /* stamped when it is handed to a frame writer */
 	return 0;
 }
 

@@ -133,6 +133,13 @@ int sink_kms_master(struct sink *s, int on);
 int sink_kms_reprobe(struct sink *s, char *err, size_t errlen);
 /* waits (100 ms at most) for the flip in flight: 0 when none is left */
 int sink_kms_settle(struct sink *s);
+struct kms_times_summary;
+/*
+ * Render to flip request over the newest frames (kms_pick.h): from the
+ * frame's done_us (else the write's start) to drmModePageFlip returning,
+ * and its parts. Safe to call from another thread than the writes.
+ */
+void sink_kms_times(struct sink *s, struct kms_times_summary *dest);
 
 /*
  * Keeps a copy of the latest frame for the daemon to send to clients. The

@@ -15,6 +15,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,6 +52,9 @@ struct sink_kms {
 	uint8_t black[4];     /* an opaque black pixel in it */
 	char conn_name[KMS_NAME_MAX];
 	struct kms_want want; /* what was asked for: chosen again when the connectors change */
+	/* render to flip request, per frame; the writer's thread adds, another may read */
+	struct kms_times times;
+	pthread_mutex_t times_lock;
 };
 
 static const char *const connector_type[] = {
@@ -169,17 +173,24 @@ static int
 sink_kms_write(struct sink *s, const struct frame *f, char *err, size_t errlen)
 {
 	struct sink_kms *k = (struct sink_kms *)s;
+	uint64_t began = frame_now_us();
 	if (k->flips.in_flight && wait_flip(k, SINK_KMS_FLIP_WAIT_MS) < 0) {
 		k->flips.dropped++; /* the screen has not taken the last one yet: this one is skipped */
 		return 0;
 	}
+	uint64_t waited = frame_now_us();
 	int back = kms_flips_back(&k->flips);
 	scanout_draw(&k->pf, k->black, f, k->buf[back].map, k->buf[back].pitch, k->w, k->h);
+	uint64_t copied = frame_now_us();
 	if (drmModePageFlip(k->fd, k->crtc, k->buf[back].fb, DRM_MODE_PAGE_FLIP_EVENT, k) < 0) {
 		snprintf(err, errlen, "%s: page flip: %s", k->card, strerror(errno));
 		return -1;
 	}
+	uint64_t asked = frame_now_us();
 	kms_flips_asked(&k->flips);
+	pthread_mutex_lock(&k->times_lock);
+	kms_times_add(&k->times, f->done_us, began, waited, copied, asked);
+	pthread_mutex_unlock(&k->times_lock);
 	return 0;
 }
 
@@ -197,6 +208,7 @@ sink_kms_close(struct sink *s)
 		free_buffer(k->fd, &k->buf[i]);
 	if (k->fd >= 0)
 		close(k->fd);
+	pthread_mutex_destroy(&k->times_lock);
 	free(k);
 }
 
@@ -267,10 +279,12 @@ open_card(const char *card, const struct kms_want *want, char *err, size_t errle
 		return NULL;
 	}
 	k->base.ops = &sink_kms_ops;
+	pthread_mutex_init(&k->times_lock, NULL);
 	snprintf(k->card, sizeof k->card, "%s", card);
 	k->pf = (struct pixfmt){ .bpp = 32, .red = { 16, 8, 0 }, .green = { 8, 8, 0 }, .blue = { 0, 8, 0 } };
 	if ((k->fd = open(card, O_RDWR | O_CLOEXEC)) < 0) {
 		snprintf(err, errlen, "%s: %s", card, strerror(errno));
+		pthread_mutex_destroy(&k->times_lock);
 		free(k);
 		return NULL;
 	}
@@ -293,6 +307,7 @@ fail:
 	for (int i = 0; i < 2; i++)
 		free_buffer(k->fd, &k->buf[i]);
 	close(k->fd);
+	pthread_mutex_destroy(&k->times_lock);
 	free(k);
 	return NULL;
 }
@@ -339,6 +354,15 @@ sink_kms_front(const struct sink *s, uint32_t *pitch, uint64_t *flips, uint64_t 
 	*flips = k->flips.flips;
 	*dropped = k->flips.dropped;
 	return k->buf[k->flips.front].map;
+}
+
+void
+sink_kms_times(struct sink *s, struct kms_times_summary *dest)
+{
+	struct sink_kms *k = (struct sink_kms *)s;
+	pthread_mutex_lock(&k->times_lock); /* the writer waits at most one summary's sorting */
+	kms_times_sum(&k->times, dest);
+	pthread_mutex_unlock(&k->times_lock);
 }
 
 int

@@ -9,7 +9,8 @@
  * frames written to the screen are what the CRTC shows (not the console's
  * framebuffer; the kiosk's picture, many colours); tty1 is in graphics mode
  * while it runs; on SIGTERM it exits 0, tty1 is in text mode again and the
- * console's framebuffer is back on the CRTC. ok/FAIL lines; the exit status
+ * console's framebuffer is back on the CRTC; status reports the frames' render to flip
+ * request (flip_us). ok/FAIL lines; the exit status
  * is the number of failures.
  */
 #define _GNU_SOURCE
@@ -61,6 +62,33 @@ screen_colours(int fd, uint32_t fb_id, long *lit)
 	return distinct;
 }
 
+/*
+ * status's flip_us: the frames' way from the loop to their flip requests, timed. A frame's
+ * whole way is no shorter than its conversion, so the median of one is no smaller than the
+ * median of the other.
+ */
+static void
+flip_times(struct conn *c)
+{
+	json_t *r = request(c, "status"), *t = r ? json_object_get(r, "flip_us") : NULL;
+	long n = (long)json_integer_value(json_object_get(t, "n"));
+	long median = (long)json_integer_value(json_object_get(t, "median"));
+	long p99 = (long)json_integer_value(json_object_get(t, "p99"));
+	long copy = (long)json_integer_value(json_object_get(t, "copy"));
+	long queue = (long)json_integer_value(json_object_get(t, "queue"));
+	long wait = (long)json_integer_value(json_object_get(t, "wait"));
+	long ioctl = (long)json_integer_value(json_object_get(t, "ioctl"));
+	if (json_is_object(t) && n >= 1 && median > 0 && median >= copy && median >= queue) {
+		ok("status reports render to flip: median %ld us, p99 %ld us (queue %ld, wait %ld, "
+		   "copy %ld, ioctl %ld), %ld frames", median, p99, queue, wait, copy, ioctl, n);
+	} else {
+		char *got = t ? json_dumps(t, JSON_COMPACT | JSON_ENCODE_ANY) : NULL;
+		fail("status reports render to flip", "flip_us %s", got ? got : "missing");
+		free(got);
+	}
+	json_decref(r);
+}
+
 static int
 kd_mode(const char *tty)
 {
@@ -95,6 +123,7 @@ run_screen(char **argv)
 		written = status_field(&c, "frames_written");
 	check(written >= 1, "frames written to the screen", "%ld after 15 s", written);
 	sleep_ms(500); /* the flip's event */
+	flip_times(&c);
 	card = open("/dev/dri/card0", O_RDWR | O_CLOEXEC);
 	uint32_t shown = crtc_fb(card, &crtc);
 	long lit = 0;

@@ -2,7 +2,8 @@
 QEMU's standard VGA (bochs-drm) and `--display auto --vt /dev/tty1 --init tools/kiosk.init`:
 auto takes KMS, the frames it writes are what the CRTC shows (the kiosk's picture, not the
 console's framebuffer), tty1 is in graphics mode while it runs, and after SIGTERM it exits 0
-with tty1 in text mode and the console's framebuffer back on the CRTC."""
+with tty1 in text mode and the console's framebuffer back on the CRTC. While it runs,
+status's flip_us times the frames from the loop to their flip requests."""
 from tier import ROOT, assert_checks, require_built, require_tier, run_program
 
 from test_guest_kiosk import KEYBOARD_DATA, MEMORY, POSTURED
@@ -21,6 +22,7 @@ def test_the_daemon_shows_the_kiosk_on_the_screen_and_gives_the_console_back(mon
         exes=[POSTURED], timeout=240, memory=MEMORY)
     assert_checks(status, lines, [
         "the console shows on a CRTC", "frames written to the screen",
-        "the screen shows the kiosk's picture (KMS)", "tty1 in graphics mode while it runs",
+        "the screen shows the kiosk's picture (KMS)", "status reports render to flip",
+        "tty1 in graphics mode while it runs",
         "postured stops cleanly on SIGTERM", "the console back after it stops"])
     assert any("postured: display: KMS, /dev/dri/card0 Virtual-1" in ln for ln in lines)
