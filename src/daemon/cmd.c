@@ -198,6 +198,7 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	struct cmd_ctx c = { .d = d, .client = client };
 	const char *msg;
 	memset(out, 0, sizeof *out);
+	daemon_text_clear(&d->file_read); /* the last command's, journaled by now */
 	if (len && line[len - 1] == '\r')
 		len--;
 	out->reply = 1;

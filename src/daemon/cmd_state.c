@@ -36,15 +36,30 @@ cmd_save_posture(struct cmd_ctx *c)
 	return 0;
 }
 
+/*
+ * A state file's text (the caller frees it): from the disk, or on recovery
+ * the text the journal recorded when the command first ran. A copy is
+ * kept for the journal (daemon.h, file_read).
+ */
 static char *
 read_state_file(struct cmd_ctx *c, const char *rel, size_t *len)
 {
 	char path[4096];
 	if (cmd_path(c, rel, 0, path, sizeof path) < 0)
 		return NULL;
-	char *text = statefile_read(path, len);
-	if (!text)
+	struct daemon *d = c->d;
+	char *text = d->file_given.text;
+	*len = d->file_given.len;
+	d->file_given.text = NULL;
+	if (!text && !(text = statefile_read(path, len))) {
 		cmd_fail(c, errno == ENOENT ? "not-found" : "bad-file", "%.60s: %s", rel, strerror(errno));
+		return NULL;
+	}
+	daemon_text_clear(&d->file_read);
+	if ((d->file_read.text = malloc(*len + 1))) {
+		memcpy(d->file_read.text, text, *len + 1);
+		d->file_read.len = *len;
+	}
 	return text;
 }
 

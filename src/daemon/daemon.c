@@ -203,3 +203,11 @@ daemon_picks_free(struct daemon *d)
 		d->picks.pm[i] = NULL;
 	}
 }
+
+void
+daemon_text_clear(struct daemon_text *t)
+{
+	free(t->text);
+	t->text = NULL;
+	t->len = 0;
+}

@@ -120,6 +120,17 @@ struct daemon {
 	/* the kiosk's screen now, as the framebuffer shows it (a layout's views tiled) */
 	int (*render_screen)(struct daemon *d, const struct frame **dest, char *err, size_t errlen);
 	char message[256]; /* the message line under the pictures (§1.7) */
+	/*
+	 * The state file the running command read (load posture, load session),
+	 * kept until the next command: the journal records its text with the
+	 * command, so recovery replays what was read, not what the file holds
+	 * by then (it may have been saved over). file_given: on recovery, the
+	 * text the next replayed command reads instead of its file.
+	 */
+	struct daemon_text {
+		char *text;
+		size_t len;
+	} file_read, file_given;
 	/* the queue from the devices and the socket's input lines to the loop; NULL: none */
 	struct input_queue *input;
 	/* the loop's clock, as the state sees it (a replay's is the recording's); NULL: 0 */
@@ -223,5 +234,8 @@ int daemon_pick(struct daemon *d, const struct ray *r, double tmin, int skip, st
 		int *fig);
 /* frees every cached pick model */
 void daemon_picks_free(struct daemon *d);
+
+/* lets a kept text go (file_read, file_given) */
+void daemon_text_clear(struct daemon_text *t);
 
 #endif

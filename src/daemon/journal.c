@@ -172,6 +172,62 @@ replay_step(struct daemon *d, char kind, uint64_t seq)
 }
 
 static int
+hex_digit(char c)
+{
+	return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+}
+
+/*
+ * A file's text as one record's body: bytes below 0x20, DEL and '\\' as
+ * \xHH, so a newline cannot end the record. NULL when out of memory.
+ */
+static char *
+escape_text(const char *text, size_t len, size_t *out)
+{
+	char *buf = malloc(4 * len + 1), *q = buf;
+	if (!buf)
+		return NULL;
+	for (size_t i = 0; i < len; i++) {
+		unsigned char ch = (unsigned char)text[i];
+		if (ch < 0x20 || ch == 0x7f || ch == '\\')
+			q += sprintf(q, "\\x%02x", ch);
+		else
+			*q++ = (char)ch;
+	}
+	*q = 0;
+	*out = (size_t)(q - buf);
+	return buf;
+}
+
+/* escape_text undone into dest (malloc'd, NUL-terminated); -1 on a bad escape or no memory */
+static int
+unescape_text(const char *body, size_t len, struct daemon_text *dest)
+{
+	char *buf = malloc(len + 1), *q = buf;
+	if (!buf)
+		return -1;
+	for (size_t i = 0; i < len; i++) {
+		if (body[i] != '\\') {
+			*q++ = body[i];
+			continue;
+		}
+		int hi = i + 3 < len && body[i + 1] == 'x' ? hex_digit(body[i + 2]) : -1;
+		int lo = hi >= 0 ? hex_digit(body[i + 3]) : -1;
+		if (lo < 0) {
+			free(buf);
+			return -1;
+		}
+		*q++ = (char)(hi << 4 | lo);
+		i += 3;
+	}
+	*q = 0;
+	daemon_text_clear(dest);
+	dest->text = buf;
+	dest->len = (size_t)(q - buf);
+	return 0;
+}
+
+static int
 replay(struct journal *j, struct daemon *d, uint64_t snap_seq, char *err, size_t errlen)
 {
 	size_t len;
@@ -201,6 +257,10 @@ replay(struct journal *j, struct daemon *d, uint64_t snap_seq, char *err, size_t
 					fprintf(stderr, "postured: journal record %" PRIu64 " failed on replay: %s\n",
 						seq, out.json ? out.json : "");
 				free(out.json);
+				daemon_text_clear(&d->file_given); /* for this command only */
+			} else if (kind == 'F') {
+				if (unescape_text(body, blen, &d->file_given) < 0)
+					fprintf(stderr, "postured: journal record %" PRIu64 ": a bad file record\n", seq);
 			} else if (kind == 'P') {
 				char msg[300];
 				if (session_apply_line(&d->env, body, blen, msg, sizeof msg) < 0)
@@ -234,6 +294,7 @@ journal_open(struct journal *j, struct daemon *d, char *err, size_t errlen)
 		return -1;
 	if (j->seq < snap_seq)
 		j->seq = snap_seq;
+	daemon_text_clear(&d->file_given); /* a file record torn from its command */
 	/* a step begun and never ended: the daemon died mid-drag; back to before it */
 	if (d->step.open) {
 		if (daemon_step_abandon(d, err, errlen) < 0 || journal_step(j, 'A') < 0)
@@ -308,6 +369,15 @@ journal_postures(struct journal *j, const struct daemon *d)
 int
 journal_command(struct journal *j, const struct daemon *d, const char *line, size_t len)
 {
+	/* the state file the command read, as read: its 'F' record comes first */
+	if (d->file_read.text && j->fd >= 0) {
+		size_t n;
+		char *body = escape_text(d->file_read.text, d->file_read.len, &n);
+		int rc = body ? record(j, 'F', body, n) : -1;
+		free(body);
+		if (rc < 0)
+			return -1;
+	}
 	if (record(j, 'C', line, len) < 0)
 		return -1;
 	/* replaying the command reproduces its postures: no P records for them */

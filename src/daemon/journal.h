@@ -3,7 +3,10 @@
  * hears of it.
  *
  * The journal is an append-only text file of numbered records: "C line"
- * for a state-changing command, "P statement" for a posture the solver
+ * for a state-changing command, before it "F text" for the state file it
+ * read (load posture, load session; escaped to one line), so recovery
+ * replays what was read, not what a later save put in its place;
+ * "P statement" for a posture the solver
  * reached between commands (the session's root and q statements, 17
  * digits), "B", "E" and "A" for the ends of a kiosk step (journal_step). A snapshot (the session, the undo and redo checkpoints and the
  * number of the last record it includes) bounds the journal: after it is

@@ -239,3 +239,34 @@ def test_kill9_twenty_times():
         for x in (ref, d):
             x.kill9()
             x.cleanup()
+
+
+def test_a_file_saved_over_after_its_load_is_not_read_again_on_recovery():
+    """load session and load posture are journaled with the text they read: a later save
+    over the same file must not change what a restart rebuilds. (Recovery used to read the
+    file again, as it was by then: the kill -9 test above met it as figure and constraint
+    ids that differed after a restart.)"""
+    d = Daemon()
+    try:
+        d.start()
+        with d.client() as c:
+            c.request("load human as jack")
+            c.request("set joint jack knee_l 30deg")
+            c.request("save posture jack bent.pst")
+            c.request("save session s.ses")
+            c.request("set joint jack knee_l 0")
+            c.request("load session s.ses")
+            c.request("load posture jack bent.pst")
+            c.request("load human as jill")          # jill's id follows the loaded session's
+            c.request("set joint jack elbow_r 80deg")
+            c.request("save posture jack bent.pst")  # both files saved over
+            c.request("save session s.ses")
+            c.request("set joint jack knee_l 10deg")
+            before = canonical(observe(c))
+        d.restart()
+        with d.client() as c:
+            after = canonical(observe(c))
+        assert after == before, describe_difference(after, before) + "\n" + d.log()
+    finally:
+        d.kill9()
+        d.cleanup()
