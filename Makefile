@@ -30,8 +30,10 @@ DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-de
 	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils \
 	libxkbcommon-dev xkb-data libx11-data libdrm-dev
 # without their recommends: QEMU boots the kernel test tier's guest (tests/guest);
-# debhelper, fakeroot and lintian build and check the Debian package (make deb)
-DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian
+# debhelper, fakeroot and lintian build and check the Debian package (make deb);
+# debootstrap and e2fsprogs make the clean Debian root it is installed into and booted
+# from in the guest (tests/guest/test_guest_package.py)
+DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian debootstrap e2fsprogs
 
 # the layers, bottom up; each folder includes only from those before it (make layer-check)
 LAYERS    := figure pose draw interact daemon
