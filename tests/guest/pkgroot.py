@@ -162,6 +162,9 @@ Description=posture package test: the human on the screen
 # only ordered, never Wants=/Requires=: the package's enabling must start postured, and
 # the check's systemctl stop of it must not stop the check
 After=postured.service
+# the image is thrown away: no unit's stop is waited for
+SuccessAction=poweroff-force
+FailureAction=poweroff-force
 
 [Service]
 Type=oneshot
@@ -181,8 +184,6 @@ echo "%s"
 journalctl -b -u postured --no-pager -o short-monotonic
 echo "%s"
 echo "%s $rc"
-# the units' stop is not waited for: the image is thrown away
-systemctl --no-block poweroff --force
 """ % (JOURNAL_BEGIN, JOURNAL_END, guest.EXIT_MARKER)
 
 
