@@ -31,8 +31,12 @@ DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-de
 	libxkbcommon-dev xkb-data libx11-data libdrm-dev
 # without their recommends: QEMU boots the kernel test tier's guest (tests/guest);
 # debhelper, fakeroot and lintian build and check the Debian package (make deb);
-# nodejs and npm run the Khronos glTF validator (the glTF export's tests)
-DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian liburdfdom-tools nodejs npm
+# check_urdf (liburdfdom-tools) parses the URDF export; nodejs and npm run the Khronos glTF
+# validator (the glTF export's tests); debootstrap and
+# e2fsprogs make the clean Debian root the package is installed into and booted from in the
+# guest (tests/guest/test_guest_package.py)
+DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian liburdfdom-tools nodejs npm \
+	debootstrap e2fsprogs
 # the Khronos glTF validator, from npm into $(BUILD)/npm (make deps)
 GLTF_VALIDATOR := gltf-validator@2.0.0-dev.3.10
 

@@ -666,9 +666,11 @@ loop_run(const struct loop_config *cfg)
 		fprintf(stderr, "postured: VT: %s\n", err);
 		goto out;
 	}
-	L->watchdog_us = notify_watchdog_usec();
+	/* READY=1, and with it systemd's watchdog, wait for the first frame: llvmpipe compiles
+	 * its shaders then, seconds on a slow machine, which the start's timeout is for */
+	uint64_t watchdog_us = notify_watchdog_usec();
+	int ready = 0;
 	L->fps_t0 = loop_real_now();
-	notify_send("READY=1");
 	fprintf(stderr, "postured: listening on %s%s\n", cfg->socket_path,
 		cfg->tcp_port > 0 ? " and 127.0.0.1 (token required)" : "");
 	static struct pollfd fds[SERVER_MAX_CLIENTS + 4 + INPUT_DEVS_POLL_MAX];
@@ -734,6 +736,11 @@ loop_run(const struct loop_config *cfg)
 									: L->period_us;
 			if (next < loop_real_now()) /* fell behind: do not try to catch up */
 				next = loop_real_now() + L->period_us;
+		}
+		if (!ready) {
+			ready = 1;
+			notify_send("READY=1");
+			L->watchdog_us = watchdog_us; /* the next round's feed pings at once */
 		}
 		/* replies leave only after what they acknowledge is on disk */
 		if (L->j.seq != L->synced_seq) {

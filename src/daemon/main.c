@@ -86,7 +86,8 @@ static const char usage[] =
 	"  --help             this text\n"
 	"\n"
 	"Signals: SIGTERM and SIGINT stop it cleanly (journal flushed, snapshot written).\n"
-	"Under systemd (Type=notify) it reports READY=1 when listening and pings the watchdog.\n";
+	"Under systemd (Type=notify) it reports READY=1 when listening with a first frame drawn,\n"
+	"and pings the watchdog.\n";
 
 struct settings {
 	char socket[PATH_MAX], state_dir[PATH_MAX], frames[PATH_MAX], init[PATH_MAX], library[PATH_MAX];

@@ -59,6 +59,8 @@ IMPLIED = {
     "libcomposite": ["dummy_hcd"],
     "vcan": ["can_raw"],
     "can_raw": ["can"],
+    # the crc32c the mount of an ext4 file system asks the crypto API for
+    "ext4": ["crc32c_generic"],
 }
 
 
@@ -294,7 +296,7 @@ poweroff -f
 """
 
 
-def _resolve_modules(mods_dir, names):
+def resolve_modules(mods_dir, names):
     """Expand module names with IMPLIED and modules.dep; return the list
     of names to load (in order) and the set of .ko relative paths."""
     deps = {}
@@ -345,26 +347,9 @@ def _modname(path):
     return base.replace("-", "_")
 
 
-def _base_image(kver, mods_dir, bb, modules):
-    """The cached part: busybox, /init, the modules.  Keyed on its inputs."""
-    order, files = _resolve_modules(mods_dir, modules)
-    key = hashlib.sha256(("%s|%s|%s|%s" % (
-        LAYOUT_VERSION, kver, INIT, " ".join(sorted(files) + order))
-    ).encode()).hexdigest()[:16]
-    path = os.path.join(CACHE, "initrd", "base-%s.cpio.gz" % key)
-    if os.path.exists(path):
-        return path
-    c = Cpio()
-    for d in ("/bin", "/sbin", "/usr/bin", "/usr/sbin", "/proc", "/sys",
-              "/dev", "/tmp", "/run", "/etc", "/root", "/guest",
-              "/lib/modules/" + kver):
-        c.mkdir(d)
-    c.host_file("/bin/busybox", bb, 0o755)
-    c.symlink("/bin/sh", "busybox")
-    c.file("/init", INIT.encode(), 0o755)
-    c.file("/etc/passwd", b"root:x:0:0:root:/root:/bin/sh\n")
-    c.file("/etc/group", b"root:x:0:\ninput:x:101:\n")
-    c.file("/guest/modules", ("\n".join(order) + "\n").encode())
+def add_modules(c, kver, mods_dir, files):
+    """Put the module files (relative paths, from resolve_modules) into the cpio c, with
+    a modules.dep and modules.alias restricted to them."""
     mroot = "/lib/modules/" + kver
     for rel in sorted(files):
         c.host_file(mroot + "/" + rel, os.path.join(mods_dir, rel), 0o644)
@@ -391,6 +376,29 @@ def _base_image(kver, mods_dir, bb, modules):
         src = os.path.join(mods_dir, extra)
         if os.path.exists(src):
             c.host_file(mroot + "/" + extra, src, 0o644)
+
+
+def _base_image(kver, mods_dir, bb, modules):
+    """The cached part: busybox, /init, the modules.  Keyed on its inputs."""
+    order, files = resolve_modules(mods_dir, modules)
+    key = hashlib.sha256(("%s|%s|%s|%s" % (
+        LAYOUT_VERSION, kver, INIT, " ".join(sorted(files) + order))
+    ).encode()).hexdigest()[:16]
+    path = os.path.join(CACHE, "initrd", "base-%s.cpio.gz" % key)
+    if os.path.exists(path):
+        return path
+    c = Cpio()
+    for d in ("/bin", "/sbin", "/usr/bin", "/usr/sbin", "/proc", "/sys",
+              "/dev", "/tmp", "/run", "/etc", "/root", "/guest",
+              "/lib/modules/" + kver):
+        c.mkdir(d)
+    c.host_file("/bin/busybox", bb, 0o755)
+    c.symlink("/bin/sh", "busybox")
+    c.file("/init", INIT.encode(), 0o755)
+    c.file("/etc/passwd", b"root:x:0:0:root:/root:/bin/sh\n")
+    c.file("/etc/group", b"root:x:0:\ninput:x:101:\n")
+    c.file("/guest/modules", ("\n".join(order) + "\n").encode())
+    add_modules(c, kver, mods_dir, files)
     os.makedirs(os.path.dirname(path), exist_ok=True)
     tmp = path + ".tmp%d" % os.getpid()
     with open(tmp, "wb") as f:
@@ -492,20 +500,28 @@ def run(binary, args=(), modules=(), timeout=120.0, files=(), exes=(),
                 shutil.copyfileobj(b, f)
             f.write(extra)   # the kernel unpacks concatenated archives
         t_pack = time.monotonic() - t0
-        # -cpu max: the project's binaries are built for x86-64-v2 (SSE4.2,
-        # POPCNT), which TCG's default qemu64 CPU lacks
-        cmd = [QEMU, "-accel", "tcg", "-cpu", "max", "-m", str(memory), "-smp", "1",
-               "-nographic", "-no-reboot", "-nodefaults", "-serial", "stdio",
-               "-kernel", vmlinuz, "-initrd", initrd,
-               "-append", ("console=ttyS0 quiet panic=-1 oops=panic "
-                           "loglevel=3 tsc=reliable " + append).strip()]
-        cmd += shlex.split(os.environ.get("POSTURE_GUEST_QEMU_ARGS", ""))
-        return _boot(cmd, timeout, out, t_pack)
+        return boot(qemu_command(vmlinuz, initrd, memory, append), timeout, out, t_pack)
     finally:
         os.unlink(initrd)
 
 
-def _boot(cmd, timeout, out, t_pack):
+def qemu_command(vmlinuz, initrd, memory=512, append="", smp=1):
+    """The QEMU command line of a guest: serial console on stdio, no reboot (a panic
+    ends QEMU), and POSTURE_GUEST_QEMU_ARGS (e.g. -vga std) at the end."""
+    # -cpu max: the project's binaries are built for x86-64-v2 (SSE4.2,
+    # POPCNT), which TCG's default qemu64 CPU lacks
+    cmd = [QEMU, "-accel", "tcg", "-cpu", "max", "-m", str(memory), "-smp", str(smp),
+           "-nographic", "-no-reboot", "-nodefaults", "-serial", "stdio",
+           "-kernel", vmlinuz, "-initrd", initrd,
+           "-append", ("console=ttyS0 quiet panic=-1 oops=panic "
+                       "loglevel=3 tsc=reliable " + append).strip()]
+    return cmd + shlex.split(os.environ.get("POSTURE_GUEST_QEMU_ARGS", ""))
+
+
+def boot(cmd, timeout, out, t_pack=0.0):
+    """Run the QEMU command cmd, streaming its console to out, until the guest prints
+    EXIT_MARKER and powers off; return the status the marker gives (GuestError when
+    it never comes, with the panic and the last console lines)."""
     t0 = time.monotonic()
     try:
         p = subprocess.Popen(cmd, stdin=subprocess.DEVNULL,

@@ -14,13 +14,6 @@
  * is the number of failures.
  */
 #define _GNU_SOURCE
-#include <linux/kd.h>
-#include <sys/ioctl.h>
-#include <sys/mman.h>
-
-#include <xf86drm.h>
-#include <xf86drmMode.h>
-
 #define SOCK "/tmp/screen/sock"
 #define STATE "/tmp/screen/state"
 #define START_MS 90000 /* generous: TCG */
@@ -28,39 +21,6 @@
 #include "tests/guest/guest_daemon.h"
 #include "tests/guest/guest_drm.h"
 
-
-/* the pixels the screen shows (root may map another's buffer): distinct colours among a sample */
-static int
-screen_colours(int fd, uint32_t fb_id, long *lit)
-{
-	drmModeFBPtr fb = drmModeGetFB(fd, fb_id);
-	struct drm_mode_map_dumb map = { .handle = fb ? fb->handle : 0 };
-	if (!fb || drmIoctl(fd, DRM_IOCTL_MODE_MAP_DUMB, &map) < 0) {
-		drmModeFreeFB(fb);
-		return -1;
-	}
-	size_t size = (size_t)fb->pitch * fb->height;
-	uint8_t *p = mmap(NULL, size, PROT_READ, MAP_SHARED, fd, (off_t)map.offset);
-	int distinct = 0;
-	uint32_t seen[64];
-	*lit = 0;
-	for (uint32_t y = 0; p != MAP_FAILED && y < fb->height; y += 7)
-		for (uint32_t x = 0; x < fb->width; x += 7) {
-			uint32_t v;
-			memcpy(&v, p + (size_t)y * fb->pitch + (size_t)x * 4, 4);
-			v &= 0xffffff;
-			*lit += v != 0;
-			int k = 0;
-			while (k < distinct && seen[k] != v)
-				k++;
-			if (k == distinct && distinct < 64)
-				seen[distinct++] = v;
-		}
-	if (p != MAP_FAILED)
-		munmap(p, size);
-	drmModeFreeFB(fb);
-	return distinct;
-}
 
 /*
  * status's flip_us: the frames' way from the loop to their flip requests, timed. A frame's
@@ -87,17 +47,6 @@ flip_times(struct conn *c)
 		free(got);
 	}
 	json_decref(r);
-}
-
-static int
-kd_mode(const char *tty)
-{
-	int fd = open(tty, O_RDWR | O_NOCTTY | O_CLOEXEC), mode = -1;
-	if (fd >= 0) {
-		ioctl(fd, KDGETMODE, &mode);
-		close(fd);
-	}
-	return mode;
 }
 
 /* the daemon on the machine's screen: KMS chosen by auto, the human drawn, the console back after */

@@ -9,51 +9,20 @@ import os
 import shutil
 import subprocess
 import textwrap
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
+from debpkg import FILES, the_deb
 
 pytestmark = pytest.mark.skipif(
     not shutil.which("dpkg-buildpackage") or not shutil.which("dh")
     or not shutil.which("lintian"),
     reason="dpkg-buildpackage, debhelper or lintian missing (make deps installs them)")
 
-# what the package must hold: the daemon and the tools, the man page, the unit, the udev
-# rules, the system user, the CAN modules, the configuration, the figures, the client
-FILES = [
-    "usr/bin/postured", "usr/bin/posturectl", "usr/bin/posture-figure", "usr/bin/posture-input",
-    "usr/bin/posture-replay", "usr/share/man/man8/postured.8.gz",
-    "usr/share/man/man1/posturectl.1.gz", "usr/share/man/man1/posture-replay.1.gz",
-    "usr/share/man/man1/posture-figure.1.gz", "usr/share/man/man1/posture-input.1.gz",
-    "lib/systemd/system/postured.service", "lib/udev/rules.d/60-posture.rules",
-    "usr/lib/sysusers.d/posture.conf", "usr/lib/modules-load.d/posture.conf",
-    "etc/posture/postured.conf", "usr/share/posture/kiosk.init",
-    "usr/share/posture/library/chair.fig", "usr/share/posture/library/table.fig",
-    "usr/share/posture/library/vehicle_seat.fig", "usr/share/posture/library/box.fig",
-    "usr/lib/python3/dist-packages/posture/__init__.py",
-    "usr/lib/python3/dist-packages/posture/client.py",
-    "usr/share/doc/posture/copyright",
-]
-
 
 @pytest.fixture(scope="module")
 def deb(tmp_path_factory):
-    given = os.environ.get("POSTURE_DEB")
-    if given:
-        return Path(given)
-    # a copy of the tree: dpkg-buildpackage writes into debian/ and beside the tree
-    top = tmp_path_factory.mktemp("debbuild")
-    src = top / "posture"
-    shutil.copytree(ROOT, src, symlinks=True, ignore=shutil.ignore_patterns(
-        ".git", "build", "build-*", ".venv", "__pycache__", ".pytest_cache"))
-    r = subprocess.run(["make", "deb", "DEB_JOBS=%d" % min(os.cpu_count() or 1, 2)],
-                       cwd=src, capture_output=True, text=True, timeout=900)
-    assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
-    debs = sorted((src / "build" / "deb").glob("posture_*.deb"))
-    assert len(debs) == 1, list((src / "build" / "deb").iterdir())
-    return debs[0]
+    return the_deb(tmp_path_factory.mktemp("debbuild"))
 
 
 def test_package_holds_the_service_and_its_files(deb):
