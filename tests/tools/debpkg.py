@@ -32,12 +32,18 @@ def deb_tools_missing():
     return " and ".join(need) + " missing (make deps installs them)" if need else ""
 
 
+_built = []  # the package this test run built: one build serves every test that wants it
+
+
 def the_deb(workdir):
     """POSTURE_DEB when it is set, else the posture_*.deb that make deb builds from a copy
-    of the tree in workdir (dpkg-buildpackage writes into debian/ and beside the tree)."""
+    of the tree in workdir (dpkg-buildpackage writes into debian/ and beside the tree),
+    once a test run."""
     given = os.environ.get("POSTURE_DEB")
     if given:
         return Path(given).resolve()
+    if _built and _built[0].exists():
+        return _built[0]
     src = Path(workdir) / "posture"
     shutil.copytree(ROOT, src, symlinks=True, ignore=shutil.ignore_patterns(
         ".git", "build", "build-*", ".venv", "__pycache__", ".pytest_cache"))
@@ -46,4 +52,5 @@ def the_deb(workdir):
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
     debs = sorted((src / "build" / "deb").glob("posture_*.deb"))
     assert len(debs) == 1, list((src / "build" / "deb").iterdir())
+    _built[:] = [debs[0]]
     return debs[0]
