@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "export/export_file.h"
 #include "export/seg_mesh.h"
@@ -209,6 +210,24 @@ write_mesh_file(const struct model *m, int seg, const char *path, char *err, siz
 	return rc;
 }
 
+/* segment seg's mesh file beside the URDF: 0, or -1 when the path is too long */
+static int
+mesh_path_of(const struct model *m, int seg, const char *dir, const char *stem, char *dest,
+	     size_t len)
+{
+	return (size_t)snprintf(dest, len, "%s%s_%s.stl", dir, stem, m->seg_name[seg]) < len ? 0 : -1;
+}
+
+/* the mesh files of the segments before seg removed: a failed export leaves nothing */
+static void
+remove_meshes(const struct model *m, int seg, const char *dir, const char *stem)
+{
+	char path[4096 + 2 * MODEL_NAME_MAX];
+	for (int k = 0; k < seg; k++)
+		if (m->seg_ngeom[k] && mesh_path_of(m, k, dir, stem, path, sizeof path) == 0)
+			unlink(path);
+}
+
 int
 urdf_export(const struct model *m, const struct state *s, const char *path, char *err,
 	    size_t errlen)
@@ -220,23 +239,26 @@ urdf_export(const struct model *m, const struct state *s, const char *path, char
 	for (int seg = 0; seg < m->nseg; seg++) {
 		if (!m->seg_ngeom[seg])
 			continue;
-		if ((size_t)snprintf(mesh_path, sizeof mesh_path, "%s%s_%s.stl", dir, stem,
-				     m->seg_name[seg]) >= sizeof mesh_path) {
+		if (mesh_path_of(m, seg, dir, stem, mesh_path, sizeof mesh_path) < 0) {
 			snprintf(err, errlen, "path too long");
+			remove_meshes(m, seg, dir, stem);
 			return -1;
 		}
-		if (write_mesh_file(m, seg, mesh_path, err, errlen) < 0)
+		if (write_mesh_file(m, seg, mesh_path, err, errlen) < 0) {
+			remove_meshes(m, seg + 1, dir, stem);
 			return -1;
+		}
 		files++;
 	}
 	char mesh_stem[4096 + 2];
 	snprintf(mesh_stem, sizeof mesh_stem, "%s_", stem);
 	struct export_file out;
 	FILE *f = export_file_open(&out, path, err, errlen);
-	if (!f)
+	if (f)
+		urdf_write(m, s, mesh_stem, f);
+	if (!f || export_file_commit(&out, err, errlen) < 0) {
+		remove_meshes(m, m->nseg, dir, stem);
 		return -1;
-	urdf_write(m, s, mesh_stem, f);
-	if (export_file_commit(&out, err, errlen) < 0)
-		return -1;
+	}
 	return files + 1;
 }

@@ -45,7 +45,7 @@ int urdf_write(const struct model *m, const struct state *s, const char *mesh_st
  * geometry, named "<stem>_<segment>.stl" where stem is path's file name
  * without ".urdf". The URDF goes through a temporary file and a rename,
  * so it never exists half written. Returns the number of files written,
- * or -1 with why in err.
+ * or -1 with why in err and none left (the meshes written are removed).
  */
 int urdf_export(const struct model *m, const struct state *s, const char *path, char *err,
 		size_t errlen);

@@ -258,3 +258,16 @@ def test_daemon_export_is_the_posture_mujoco_shows(daemon, root):
         want = np.array(c.request(f"get site jack {site}")["position"])
         worst = max(worst, np.abs(data.xpos[model.body(site_link(site)).id] - want).max())
     assert worst < TOL, f"a site is {worst:.3g} m from where the daemon has it"
+
+
+def test_a_failed_export_leaves_no_mesh_behind(tmp_path):
+    """the URDF cannot be written (its temporary name is taken by a directory): the meshes
+    written before it are removed, and nothing is left"""
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "human.urdf.part").mkdir()
+    proc = subprocess.run([str(BUILD / "bin" / "posture-figure"), "--human", "--out",
+                           str(out / "human.urdf"), "urdf"], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == 1 and "human.urdf.part" in proc.stderr, proc.stderr
+    assert [p.name for p in out.iterdir()] == ["human.urdf.part"]
