@@ -209,6 +209,23 @@ def check():
     return True, "%s, kernel %s in %s" % (shutil.which(QEMU), have[0], CACHE)
 
 
+def ready_for(exe):
+    """For a benchmark that runs exe in the guest: None when it can run now (the kernel
+    fetched first if it can be), else why not."""
+    if os.environ.get("POSTURE_GUEST") == "skip":
+        return "POSTURE_GUEST=skip"
+    if not os.path.exists(exe):
+        return "%s is not built (make all builds it)" % exe
+    ok, why = check()
+    if not ok and shutil.which(QEMU) and fetchable():
+        try:
+            fetch()
+        except GuestError as e:
+            return str(e)
+        ok, why = check()
+    return None if ok else why
+
+
 # ------------------------------------------------------------- cpio (newc)
 
 class Cpio:

@@ -23,7 +23,6 @@ import io
 import os
 import pathlib
 import re
-import shutil
 import subprocess
 import sys
 
@@ -60,18 +59,8 @@ def host_calib():
 
 
 def main():
-    if os.environ.get("POSTURE_GUEST") == "skip":
-        skip("POSTURE_GUEST=skip")
-    if not EXE.exists():
-        skip(f"{EXE} is not built (make all builds it)")
-    ok, why = guest.check()
-    if not ok and shutil.which(guest.QEMU) and guest.fetchable():
-        try:
-            guest.fetch()
-        except guest.GuestError as e:
-            skip(str(e))
-        ok, why = guest.check()
-    if not ok:
+    why = guest.ready_for(EXE)
+    if why:
         skip(why)
 
     before = host_calib()

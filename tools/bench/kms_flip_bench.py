@@ -19,7 +19,6 @@ import io
 import os
 import pathlib
 import re
-import shutil
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -57,18 +56,8 @@ def measure(qemu_args, modules):
 
 
 def main():
-    if os.environ.get("POSTURE_GUEST") == "skip":
-        skip("POSTURE_GUEST=skip")
-    if not EXE.exists():
-        skip(f"{EXE} is not built (make all builds it)")
-    ok, why = guest.check()
-    if not ok and shutil.which(guest.QEMU) and guest.fetchable():
-        try:
-            guest.fetch()
-        except guest.GuestError as e:
-            skip(str(e))
-        ok, why = guest.check()
-    if not ok:
+    why = guest.ready_for(EXE)
+    if why:
         skip(why)
     for name, qemu_args, modules in DEVICES:
         r = measure(qemu_args, modules)
