@@ -72,15 +72,23 @@ cmd_key(struct cmd_ctx *c, const char *key)
 }
 
 int
-cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len)
+cmd_path_words(struct cmd_ctx *c, const char *rel)
 {
-	if (for_write && c->d->files_read_only)
-		return cmd_fail(c, "denied", "a replay writes no files");
 	if (!rel[0] || rel[0] == '/')
 		return cmd_fail(c, "denied", "paths are relative to the state directory");
 	for (const char *p = rel; *p; p = strchr(p, '/') ? strchr(p, '/') + 1 : p + strlen(p))
 		if (!strncmp(p, "..", 2) && (p[2] == '/' || !p[2]))
 			return cmd_fail(c, "denied", "'..' may not appear in a path");
+	return 0;
+}
+
+int
+cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len)
+{
+	if (for_write && c->d->files_read_only)
+		return cmd_fail(c, "denied", "a replay writes no files");
+	if (cmd_path_words(c, rel) < 0)
+		return -1;
 	char root[PATH_MAX], full[PATH_MAX], real[PATH_MAX];
 	if (!realpath(c->d->state_dir, root))
 		return cmd_fail(c, "io", "state directory: %s", strerror(errno));

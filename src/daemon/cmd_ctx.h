@@ -40,6 +40,8 @@ int cmd_side(struct cmd_ctx *c, const char *w);          /* left 0, right 1, or 
 const char *cmd_key(struct cmd_ctx *c, const char *key);  /* "key=value" among the args */
 /* path inside the state directory: 0 with the full path in dest, or -1 with the error set */
 int cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len);
+/* its checks of the words alone (relative, no ".."), which need no disk: 0, or -1 with the error set */
+int cmd_path_words(struct cmd_ctx *c, const char *rel);
 json_t *cmd_vec(const double *v, int n);
 /* a figure's hands and feet held to other figures, as a list */
 json_t *cmd_attachments(const struct env *e, int fig);

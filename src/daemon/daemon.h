@@ -133,6 +133,12 @@ struct daemon {
 	} file_read, file_given;
 	/* the queue from the devices and the socket's input lines to the loop; NULL: none */
 	struct input_queue *input;
+	/*
+	 * Reads a state file a command loads (a recording keeps a copy; a replay
+	 * gives the recorded text): as statefile_read; path NULL: it did not
+	 * resolve (errno says why), which a recording notes. NULL: statefile_read.
+	 */
+	char *(*read_state)(struct daemon *d, const char *path, size_t *len);
 	/* the loop's clock, as the state sees it (a replay's is the recording's); NULL: 0 */
 	uint64_t (*now_us)(struct daemon *d);
 	/* the dial panel's map: its valuators' names; NULL: no panel */

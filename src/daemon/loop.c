@@ -30,6 +30,14 @@ state_clock(struct daemon *d)
 	return tape_clock(&L->tape);
 }
 
+/* a state file a command loads: through the tape, which records or replays it */
+static char *
+read_state(struct daemon *d, const char *path, size_t *len)
+{
+	struct loop *L = d->loop;
+	return tape_read_state(&L->tape, path, len);
+}
+
 /* a line the loop runs as if a client sent it, journaled when it changes state */
 static void
 run_own_command(struct loop *L, const char *line)
@@ -590,6 +598,7 @@ loop_setup(struct loop *L, const struct loop_config *cfg)
 	input_queue_init(&L->input);
 	L->d.input = &L->input;
 	L->d.now_us = state_clock;
+	L->d.read_state = read_state;
 	scene_init(&L->scene, cfg->frames_dir);
 	L->scene.cpu_us = loop_thread_cpu_us;
 	L->scene.wall_us = loop_real_now;

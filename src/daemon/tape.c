@@ -27,7 +27,7 @@ tape_kind_name(enum tape_kind kind)
 		[TAPE_FIG] = "a figure's hash",    [TAPE_JOINTS] = "joints' hashes",
 		[TAPE_POSTURE] = "a frame's end",  [TAPE_STOP] = "the stop",
 		[TAPE_DEVICE] = "a device's file", [TAPE_DEVCALL] = "a device's decoder call",
-		[TAPE_EVENT] = "a device event",
+		[TAPE_EVENT] = "a device event",   [TAPE_FILE] = "a state file read",
 	};
 	return (unsigned)kind < sizeof name / sizeof *name && name[kind] ? name[kind] : "a record";
 }
@@ -212,7 +212,8 @@ write_manifest(const struct tape *t, int complete)
 		      "file config config the settings, key = value\n"
 		      "file start state the session and undo history when recording began\n"
 		      "file lines lines the clients' lines: T_US CLIENT TEXT\n"
-		      "file frames frames the frame log\n");
+		      "file frames frames the frame log\n"
+		      "files read.N read the state files commands read, as read (file N in the log)\n");
 	for (int k = 0; k < t->dev_files && (size_t)n < sizeof text - 200; k++)
 		n += snprintf(text + n, sizeof text - (size_t)n, "file %s\n", t->dev_file[k]);
 	return tape_write_file(t, "manifest", text, (size_t)n);

@@ -88,6 +88,7 @@ enum tape_kind {
 	TAPE_DEVICE,  /* a device's file begins: fig the device, text "FORMAT FILE MAP", x its dpi */
 	TAPE_DEVCALL, /* a decoder call: fig the device, sub its kind, arg, t, count; text resync bytes */
 	TAPE_EVENT,   /* an event no decoder made (a device arriving or leaving): ev */
+	TAPE_FILE,    /* a state file a command read: t its number (read.N), fig its errno or 0 */
 };
 
 struct tape_entry {
@@ -127,6 +128,7 @@ struct tape {
 	enum tape_mode mode;
 	char dir[TAPE_PATH_MAX];
 	uint64_t frames, lines; /* written or replayed */
+	uint64_t reads;         /* state files read (load posture, load session), a copy each */
 	uint64_t virtual_us;    /* TAPE_VIRTUAL: the time now */
 	/* recording */
 	struct tape_out out[TAPE_OUTS];

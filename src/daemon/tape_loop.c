@@ -1,13 +1,16 @@
 /* tape_loop.c - the loop's side of the tape: each outside input recorded, or answered from the log */
 #include "daemon/tape_loop.h"
 
+#include <errno.h>
 #include <inttypes.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
 
 #include "daemon/posture_hash.h"
+#include "daemon/statefile.h"
 #include "daemon/tape_read.h"
 
 /*
@@ -91,6 +94,52 @@ tape_client_line(struct tape *t, int client, const char *line, size_t len)
 	tape_out_printf(t, TAPE_OUT_LINES, "%" PRIu64 " %d ", tape_real_now(), client);
 	tape_out_escaped(t, TAPE_OUT_LINES, line, len);
 	tape_out_printf(t, TAPE_OUT_FRAMES, "line %" PRIu64 "\n", t->lines);
+}
+
+char *
+tape_read_state(struct tape *t, const char *path, size_t *len)
+{
+	char name[64];
+	if (t->mode == TAPE_REPLAY) {
+		const struct tape_entry *e = expect(t, TAPE_FILE, "a state file read");
+		if (!e) {
+			errno = EIO;
+			return NULL;
+		}
+		if (e->fig) { /* the read failed then: it fails alike */
+			errno = e->fig;
+			return NULL;
+		}
+		snprintf(name, sizeof name, "read.%" PRIu64, e->t);
+		char full[TAPE_PATH_MAX + 64];
+		snprintf(full, sizeof full, "%s/%s", t->dir, name);
+		char *text = statefile_read(full, len);
+		if (!text)
+			astray(t, "%s: %s", full, strerror(errno));
+		return text;
+	}
+	char *text = path ? statefile_read(path, len) : NULL; /* no path: it did not resolve */
+	if (t->mode != TAPE_RECORD)
+		return text;
+	int why = errno;
+	if (!text) {
+		tape_out_printf(t, TAPE_OUT_FRAMES, "nofile %d\n", why > 0 ? why : EIO);
+	} else {
+		snprintf(name, sizeof name, "read.%" PRIu64, ++t->reads);
+		if (tape_write_file(t, name, text, *len) < 0) {
+			int bad = errno ? errno : EIO;
+			pthread_mutex_lock(&t->mu);
+			if (!t->write_error) {
+				t->write_error = bad;
+				fprintf(stderr, "postured: recording %s: %s: %s\n", t->dir, name,
+					strerror(bad));
+			}
+			pthread_mutex_unlock(&t->mu);
+		}
+		tape_out_printf(t, TAPE_OUT_FRAMES, "file %" PRIu64 "\n", t->reads);
+	}
+	errno = why;
+	return text;
 }
 
 uint64_t

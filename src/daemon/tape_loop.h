@@ -12,6 +12,14 @@
 uint64_t tape_clock(struct tape *t);
 /* a client's line about to run: recorded */
 void tape_client_line(struct tape *t, int client, const char *line, size_t len);
+/*
+ * A state file a command reads (load posture, load session): from the disk,
+ * with a copy recorded (read.N beside the log); in a replay the recorded
+ * text, the disk untouched. The text (malloc'd, NUL-terminated), or NULL
+ * with errno as the read failed. path NULL: the path did not resolve
+ * (errno says why), recorded as a failed read.
+ */
+char *tape_read_state(struct tape *t, const char *path, size_t *len);
 /* a frame begins: its time (the real one, recorded; or the log's) */
 uint64_t tape_frame_begin(struct tape *t);
 /*

@@ -294,6 +294,18 @@ parse_record(struct tape *t, char *line, struct tape_entry *e, char *why, size_t
 		e->hash = b;
 	} else if (!strcmp(line, "stop")) {
 		e->kind = TAPE_STOP;
+	} else if (sscanf(line, "file %llu%n", &a, &used) == 1 && !line[used]) {
+		if (a < 1)
+			return say(why, whylen, "file N counts from 1");
+		e->kind = TAPE_FILE;
+		e->t = a;
+		e->fig = 0;
+	} else if (sscanf(line, "nofile %d%n", &fig, &used) == 1 && !line[used]) {
+		if (fig <= 0)
+			return say(why, whylen, "nofile ERRNO, a positive number");
+		e->kind = TAPE_FILE;
+		e->t = 0;
+		e->fig = fig;
 	} else if (!strncmp(line, "device ", 7) || !strncmp(line, "dev ", 4) ||
 		   !strncmp(line, "event ", 6)) {
 		if (parse_device_record(line, e, why, whylen) < 0)

@@ -204,3 +204,36 @@ def test_record_start_and_stop_over_the_socket(daemon_factory, tmp_path):
     status, out, err = replay(d.state_dir / "take1")
     assert status == 0, err
     assert out[1] == live and out[2] == 0
+
+
+def test_loads_replay_what_they_read_live(daemon_factory, tmp_path):
+    """load posture and load session read state files: a recording keeps what each read
+    (read.N beside the log), so the replay loads the same text though the replay's state
+    directory is the recording and the files were saved over afterwards. A load whose file
+    was missing fails alike in the replay."""
+    rec = tmp_path / "rec"
+    d = daemon_factory(fps=1000, extra=("--record", str(rec), "--solve-budget", "60"))
+    with d.client() as c:
+        c.request("load human as jack")
+        c.request("set joint jack knee_l 40deg")
+        c.request("save posture jack bent.pst")
+        c.request("save session s.ses")
+        c.request("set joint jack knee_l 0")
+        c.request("set joint jack elbow_r 70deg")
+        c.request("load posture jack bent.pst")
+        assert request_error(c, "load posture jack missing.pst")["code"] == "not-found"
+        c.request("load session s.ses")
+        c.request("set joint jack elbow_l 20deg")
+        c.request("save posture jack bent.pst")
+        c.request("save session s.ses")
+        time.sleep(0.2)
+        live = c.request("status")["posture"]
+    d.stop()
+    assert sorted(p.name for p in rec.glob("read.*")) == ["read.1", "read.2"]
+    assert (rec / "read.1").read_text() != (d.state_dir / "bent.pst").read_text()
+    log = frame_log(rec)
+    assert [line for line in log if line.startswith(("file ", "nofile "))] == [
+        "file 1", "nofile 2", "file 2"]
+    status, out, err = replay(rec)
+    assert status == 0, err
+    assert out[1] == live and out[2] == 0, err
