@@ -22,7 +22,7 @@
 #include <string.h>
 
 #include "devices/can_map.h"
-#include "interact/dial_bind.h"
+#include "interact/dial_feed.h"
 
 #include "alloc_count.h"
 #include "test_random.h"

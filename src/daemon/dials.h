@@ -14,7 +14,7 @@
 #include <stdint.h>
 
 #include "daemon/modes.h"
-#include "interact/dial_bind.h"
+#include "interact/dial_feed.h"
 
 #define DIALS_STILL_US 500000 /* dials still this long: their step is over */
 

@@ -202,23 +202,6 @@ int dial_bind_find_in_names(const void *names, const char *name);
 /* lookup through a const struct can_map: its axis and mux lines (the map's valuators) */
 int dial_bind_find_in_map(const void *can_map, const char *name);
 
-enum dial_action_kind {
-	DIAL_ACTION_MOVE,    /* add delta to target */
-	DIAL_ACTION_COMMAND, /* run command */
-};
-
-/*
- * What one event asks for. target and command point into the table and
- * stay valid until it changes.
- */
-struct dial_action {
-	uint8_t kind;          /* enum dial_action_kind */
-	int binding;           /* the index of the dial or button binding */
-	const struct dial_target *target; /* MOVE */
-	double delta;          /* MOVE: metres or radians (gain, invert applied), finite */
-	const char *command;   /* COMMAND */
-};
-
 /* an empty table with no references */
 void dial_bind_init(struct dial_bind *dest);
 
@@ -259,17 +242,11 @@ int dial_bind_resolve(struct dial_bind *t, const struct dial_bind_lookup *lookup
  */
 int dial_bind_write(FILE *out, const struct dial_bind *t);
 
+/* the binding of button code's edge (enum dial_edge), or -1 */
+int dial_bind_button_find(const struct dial_bind *t, uint16_t code, uint8_t edge);
+
 /* forgets every reference (the panel was unplugged): each dial's next value moves nothing */
 void dial_bind_reset(struct dial_bind *t);
-
-/*
- * The actions of one event, at most max into dest: a bound dial's value
- * gives at most one move, a bound button's edge one command; a panel's
- * INPUT_ADDED or INPUT_REMOVED forgets the references. Returns the number
- * written; actions beyond max are counted lost. Allocates nothing.
- */
-int dial_bind_feed(struct dial_bind *t, const struct input_event_rec *e, struct dial_action *dest,
-		   int max);
 
 /* the quantity a target moves: the units its gain may carry */
 enum dial_quantity dial_target_quantity(const struct dial_target *target);

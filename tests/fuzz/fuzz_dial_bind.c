@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "interact/dial_bind.h"
+#include "interact/dial_feed.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
