@@ -55,7 +55,7 @@ textfile_fail(char *err, size_t errlen, const char *name, unsigned line, const c
 {
 	if (!err || !errlen)
 		return -1;
-	int k = snprintf(err, errlen, "%s:%u: ", name, line);
+	int k = name ? snprintf(err, errlen, "%s:%u: ", name, line) : 0;
 	if (k < 0 || (size_t)k >= errlen)
 		return -1;
 	va_list ap;

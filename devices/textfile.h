@@ -19,8 +19,8 @@ char *textfile_read(const char *path, size_t *n, char *err, size_t errlen);
 
 /*
  * Writes "name:line: " and the message into err (nothing when errlen is
- * 0), the form every reader's refusals take. Returns -1, for "return
- * textfile_fail(...)".
+ * 0), the form every reader's refusals take; name NULL: the message alone.
+ * Returns -1, for "return textfile_fail(...)".
  */
 int textfile_fail(char *err, size_t errlen, const char *name, unsigned line, const char *fmt, ...)
 	__attribute__((format(printf, 5, 6)));

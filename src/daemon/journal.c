@@ -4,7 +4,6 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <inttypes.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,16 +13,10 @@
 #include "daemon/posture_hash.h"
 #include "daemon/session.h"
 #include "daemon/statefile.h"
+#include "devices/textfile.h"
 
-static int
-say(char *err, size_t errlen, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(err, errlen, fmt, ap);
-	va_end(ap);
-	return -1;
-}
+/* the message into err; -1, for "return say(...)" */
+#define say(err, errlen, ...) textfile_fail(err, errlen, NULL, 0, __VA_ARGS__)
 
 /* the current posture hashes, so only later solver changes are recorded */
 static void
@@ -171,12 +164,6 @@ replay_step(struct daemon *d, char kind, uint64_t seq)
 		fprintf(stderr, "postured: journal record %" PRIu64 ": %s\n", seq, msg);
 }
 
-static int
-hex_digit(char c)
-{
-	return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
-}
-
 /*
  * A file's text as one record's body: bytes below 0x20, DEL and '\\' as
  * \xHH, so a newline cannot end the record. NULL when out of memory.
@@ -211,8 +198,8 @@ unescape_text(const char *body, size_t len, struct daemon_text *dest)
 			*q++ = body[i];
 			continue;
 		}
-		int hi = i + 3 < len && body[i + 1] == 'x' ? hex_digit(body[i + 2]) : -1;
-		int lo = hi >= 0 ? hex_digit(body[i + 3]) : -1;
+		int hi = i + 3 < len && body[i + 1] == 'x' ? textfile_hex_digit(body[i + 2]) : -1;
+		int lo = hi >= 0 ? textfile_hex_digit(body[i + 3]) : -1;
 		if (lo < 0) {
 			free(buf);
 			return -1;

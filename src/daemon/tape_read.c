@@ -3,7 +3,6 @@
 
 #include <errno.h>
 #include <inttypes.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,16 +10,10 @@
 #include "daemon/journal.h"
 #include "daemon/posture_hash.h"
 #include "daemon/statefile.h"
+#include "devices/textfile.h"
 
-static int
-say(char *err, size_t errlen, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(err, errlen, fmt, ap);
-	va_end(ap);
-	return -1;
-}
+/* the message into err; -1, for "return say(...)" */
+#define say(err, errlen, ...) textfile_fail(err, errlen, NULL, 0, __VA_ARGS__)
 
 /* the file dir/name, whole and NUL-terminated; NULL with err */
 static char *
