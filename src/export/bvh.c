@@ -7,16 +7,6 @@
 
 #include "export/export_file.h"
 
-/* the BVH node of segment seg: the site its frame is (the joint's child side, or the root) */
-static int
-node_site(const struct model *m, const struct state *s, int seg)
-{
-	int j = s->seg_root_joint[seg];
-	if (j < 0)
-		return s->root_site;
-	return s->jnt_dir[j] > 0 ? m->jnt_site_to[j] : m->jnt_site_from[j];
-}
-
 /* the parent-side site of the joint above seg */
 static int
 pivot_site(const struct model *m, const struct state *s, int seg)
@@ -25,12 +15,13 @@ pivot_site(const struct model *m, const struct state *s, int seg)
 	return s->jnt_dir[j] > 0 ? m->jnt_site_from[j] : m->jnt_site_to[j];
 }
 
-/* the rotation channels' axes of joint j: its rotation dofs' in order, then the rest */
+/* joint j's rotation channels' axes: its rotation dofs' in order, then the rest (root, -1: x y z) */
 static void
 channel_axes(const struct model *m, int j, int axes[3])
 {
 	int n = 0, used[3] = { 0, 0, 0 };
-	for (int d = m->jnt_dof0[j]; j >= 0 && d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++) {
+	int d0 = j >= 0 ? m->jnt_dof0[j] : 0, d1 = j >= 0 ? d0 + m->jnt_ndof[j] : 0;
+	for (int d = d0; d < d1; d++) {
 		int a = m->dof_axis[d];
 		if (m->dof_kind[d] != DOF_ROTATION)
 			continue;
@@ -45,15 +36,6 @@ channel_axes(const struct model *m, int j, int axes[3])
 	for (int a = 0; a < 3; a++)
 		if (!used[a])
 			axes[n++] = a;
-}
-
-static int
-has_translation(const struct model *m, int j)
-{
-	for (int d = m->jnt_dof0[j]; j >= 0 && d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++)
-		if (m->dof_kind[d] == DOF_TRANSLATION)
-			return 1;
-	return 0;
 }
 
 /*
@@ -131,11 +113,11 @@ depth_first(const struct model *m, const struct state *s, int seg, int *order, i
 static void
 write_node(FILE *f, const struct model *m, const struct state *s, int seg, int depth)
 {
-	int j = s->seg_root_joint[seg], site = node_site(m, s, seg), axes[3];
+	int j = s->seg_root_joint[seg], site = s->seg_root_site[seg], axes[3];
 	channel_axes(m, j, axes);
 	double off[3] = { 0, 0, 0 };
 	if (j >= 0) /* from the parent's node site to the joint, both on the parent segment */
-		offset_between(m, node_site(m, s, s->seg_parent[seg]), pivot_site(m, s, seg), off);
+		offset_between(m, s->seg_root_site[s->seg_parent[seg]], pivot_site(m, s, seg), off);
 	indent(f, depth);
 	fprintf(f, j < 0 ? "ROOT %s\n" : "JOINT %s\n", j < 0 ? m->seg_name[seg] : m->jnt_name[j]);
 	indent(f, depth);
@@ -143,7 +125,7 @@ write_node(FILE *f, const struct model *m, const struct state *s, int seg, int d
 	indent(f, depth + 1);
 	fprintf(f, "OFFSET %.9f %.9f %.9f\n", off[0], off[1], off[2]);
 	indent(f, depth + 1);
-	if (j < 0 || has_translation(m, j))
+	if (j < 0 || model_joint_has(m, j, DOF_TRANSLATION))
 		fprintf(f, "CHANNELS 6 Xposition Yposition Zposition %crotation %crotation %crotation\n",
 			"XYZ"[axes[0]], "XYZ"[axes[1]], "XYZ"[axes[2]]);
 	else
@@ -181,18 +163,18 @@ write_frame(FILE *f, const struct model *m, const struct state *tree, const int 
 	for (int i = 0; i < m->nseg; i++) {
 		int seg = order[i], j = tree->seg_root_joint[seg], axes[3];
 		channel_axes(m, j, axes);
-		const struct xform *node = &pose->site_xf[node_site(m, tree, seg)];
+		const struct xform *node = &pose->site_xf[tree->seg_root_site[seg]];
 		struct xform rel = *node;
 		if (j >= 0) {
 			struct xform inv;
-			xform_inv(&pose->site_xf[node_site(m, tree, tree->seg_parent[seg])], &inv);
+			xform_inv(&pose->site_xf[tree->seg_root_site[tree->seg_parent[seg]]], &inv);
 			xform_mul(&inv, node, &rel);
 		}
 		double deg[3];
 		euler_of(rel.r, axes, deg);
 		/* position channels place the joint in its parent: they stand for its OFFSET
 		 * (as Blender's and bvhio's readers take them), they do not add to it */
-		if (j < 0 || has_translation(m, j))
+		if (j < 0 || model_joint_has(m, j, DOF_TRANSLATION))
 			fprintf(f, "%.9f %.9f %.9f ", rel.p[0], rel.p[1], rel.p[2]);
 		fprintf(f, "%.9f %.9f %.9f%s", deg[0], deg[1], deg[2], i + 1 < m->nseg ? " " : "\n");
 	}
@@ -202,11 +184,10 @@ int
 bvh_write(const struct motion *mo, double frame_seconds, FILE *f, char *err, size_t errlen)
 {
 	const struct model *m = mo->m;
-	int first = -1;
-	for (int k = 0; k < mo->nframes && first < 0; k++)
-		if (mo->frames[k])
-			first = k;
-	if (first < 0) {
+	int some = 0;
+	for (int k = 0; k < mo->nframes; k++)
+		some |= mo->frames[k] != NULL;
+	if (!some) {
 		snprintf(err, errlen, "%s has no postures to write", mo->name);
 		return -1;
 	}
@@ -220,12 +201,8 @@ bvh_write(const struct motion *mo, double frame_seconds, FILE *f, char *err, siz
 	fprintf(f, "HIERARCHY\n");
 	write_node(f, m, mo->now, root, 0);
 	fprintf(f, "MOTION\nFrames: %d\nFrame Time: %.9f\n", mo->nframes, frame_seconds);
-	const struct state *held = mo->frames[first];
-	for (int k = 0; k < mo->nframes; k++) {
-		if (mo->frames[k])
-			held = mo->frames[k];
-		write_frame(f, m, mo->now, order, held);
-	}
+	for (int k = 0; k < mo->nframes; k++)
+		write_frame(f, m, mo->now, order, motion_frame(mo, k));
 	free(order);
 	if (ferror(f)) {
 		snprintf(err, errlen, "write error");

@@ -219,14 +219,12 @@ top_local(const struct state *tree, const struct state *pose, struct xform *dest
 }
 
 static void
-joint_local(const struct model *m, const struct state *tree, const struct state *pose, int j,
-	    struct xform *dest)
+joint_local(const struct state *tree, const struct state *pose, int j, struct xform *dest)
 {
-	int child = tree->jnt_child_seg[j], parent = tree->seg_parent[child];
-	int below = tree->jnt_dir[j] > 0 ? m->jnt_site_to[j] : m->jnt_site_from[j];
+	int child = tree->jnt_child_seg[j];
 	struct xform inv;
-	xform_inv(&pose->seg_xf[parent], &inv);
-	xform_mul(&inv, &pose->site_xf[below], dest);
+	xform_inv(&pose->seg_xf[tree->seg_parent[child]], &inv);
+	xform_mul(&inv, &pose->site_xf[tree->seg_root_site[child]], dest);
 }
 
 /* the figure's nodes and meshes; the index of its top node, or -1 with why in err */
@@ -245,16 +243,14 @@ add_figure(struct gltf *g, const struct motion *mo, int *jnt_node, char *err, si
 	}
 	/* top-down, so a joint's parent segment node exists before the joint */
 	for (int i = 0; i < m->nseg; i++) {
-		int seg = s->seg_order[i], j = s->seg_root_joint[seg], up = top, site;
-		if (j < 0) {
-			site = s->root_site;
-		} else {
-			joint_local(m, s, s, j, &x);
+		int seg = s->seg_order[i], j = s->seg_root_joint[seg], up = top;
+		if (j >= 0) {
+			joint_local(s, s, j, &x);
 			jnt_node[j] = up = add_node(g, m->jnt_name[j], &x);
 			add_child(g, seg_node[s->seg_parent[seg]], up);
-			site = s->jnt_dir[j] > 0 ? m->jnt_site_to[j] : m->jnt_site_from[j];
 		}
-		seg_node[seg] = add_node(g, m->seg_name[seg], &m->site_loc_inv[site]);
+		/* under the site at the segment's top: the joint's child side, or the root site */
+		seg_node[seg] = add_node(g, m->seg_name[seg], &m->site_loc_inv[s->seg_root_site[seg]]);
 		add_child(g, up, seg_node[seg]);
 		int mesh = add_mesh(g, m, seg, err, errlen);
 		if (mesh < -1) {
@@ -267,21 +263,6 @@ add_figure(struct gltf *g, const struct motion *mo, int *jnt_node, char *err, si
 	}
 	free(seg_node);
 	return top;
-}
-
-/* frame k of a figure: the nearest frame it exists in, or its posture now when none */
-static const struct state *
-frame_at(const struct motion *mo, int k)
-{
-	if (k >= mo->nframes)
-		k = mo->nframes - 1;
-	for (int d = 0; d < mo->nframes; d++) {
-		if (k - d >= 0 && mo->frames[k - d])
-			return mo->frames[k - d];
-		if (k + d < mo->nframes && mo->frames[k + d])
-			return mo->frames[k + d];
-	}
-	return mo->now;
 }
 
 /*
@@ -319,16 +300,6 @@ add_channel(struct gltf *g, int node, const struct xform *local, int nkey, int r
 		       rotation ? "rotation" : "translation"));
 }
 
-/* 1 when joint j has a dof of the kind */
-static int
-joint_has(const struct model *m, int j, enum dof_kind kind)
-{
-	for (int d = m->jnt_dof0[j]; d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++)
-		if (m->dof_kind[d] == kind)
-			return 1;
-	return 0;
-}
-
 /* the figure's channels over nkey keyframes; -1 when out of memory */
 static int
 add_figure_motion(struct gltf *g, const struct motion *mo, int top, const int *jnt_node,
@@ -343,15 +314,15 @@ add_figure_motion(struct gltf *g, const struct motion *mo, int top, const int *j
 		return -1;
 	}
 	for (int k = 0; k < nkey; k++)
-		top_local(mo->now, frame_at(mo, k), &local[k]);
+		top_local(mo->now, motion_frame(mo, k), &local[k]);
 	add_channel(g, top, local, nkey, 0, input, scratch);
 	add_channel(g, top, local, nkey, 1, input, scratch);
 	for (int j = 0; j < m->njnt; j++) {
-		int moves = joint_has(m, j, DOF_TRANSLATION), turns = joint_has(m, j, DOF_ROTATION);
+		int moves = model_joint_has(m, j, DOF_TRANSLATION), turns = model_joint_has(m, j, DOF_ROTATION);
 		if (!moves && !turns)
 			continue;
 		for (int k = 0; k < nkey; k++)
-			joint_local(m, mo->now, frame_at(mo, k), j, &local[k]);
+			joint_local(mo->now, motion_frame(mo, k), j, &local[k]);
 		if (moves)
 			add_channel(g, jnt_node[j], local, nkey, 0, input, scratch);
 		if (turns)

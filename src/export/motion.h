@@ -22,4 +22,10 @@ struct motion {
 	int nframes;                       /* 0: no animation */
 };
 
+/*
+ * Frame k (k past the last: the last): the nearest frame the figure exists
+ * in, the earlier on a tie; its posture now when it is in none.
+ */
+const struct state *motion_frame(const struct motion *mo, int k);
+
 #endif

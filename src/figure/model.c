@@ -665,3 +665,12 @@ model_site_fullname(const struct model *m, int site, char *dest, size_t len)
 	snprintf(dest, len, "%s.%s", m->seg_name[m->site_seg[site]], m->site_name[site]);
 	return dest;
 }
+
+int
+model_joint_has(const struct model *m, int j, enum dof_kind kind)
+{
+	for (int d = m->jnt_dof0[j]; d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++)
+		if (m->dof_kind[d] == kind)
+			return 1;
+	return 0;
+}

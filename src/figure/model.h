@@ -180,6 +180,9 @@ int model_equal(const struct model *a, const struct model *b);
  */
 void model_set_site(struct model *m, int site, const double pos[3], const double quat[4]);
 
+/* 1 when joint j has a dof of the kind */
+int model_joint_has(const struct model *m, int j, enum dof_kind kind);
+
 /* lookups by name; -1 when absent. model_find_site takes "segment.site". */
 int model_find_segment(const struct model *m, const char *name);
 int model_find_site(const struct model *m, const char *seg_dot_site);
