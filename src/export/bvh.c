@@ -15,7 +15,7 @@ pivot_site(const struct model *m, const struct state *s, int seg)
 	return s->jnt_dir[j] > 0 ? m->jnt_site_from[j] : m->jnt_site_to[j];
 }
 
-/* joint j's rotation channels' axes: its rotation dofs' in order, then the rest (root, -1: x y z) */
+/* joint j's rotation channels' axes: its rotation dofs' in order, then the rest (root: x y z) */
 static void
 channel_axes(const struct model *m, int j, int axes[3])
 {
