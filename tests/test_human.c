@@ -22,7 +22,7 @@ static const double DEG = M_PI / 180;
 static struct model *
 build(double stature, double mass, enum human_sex sex)
 {
-	struct human_def d = { stature, mass, sex };
+	struct human_def d = { .stature = stature, .mass = mass, .sex = sex };
 	char err[256] = "";
 	struct model *m = human_build(&d, err, sizeof err);
 	if (!m)
@@ -487,7 +487,7 @@ test_bad_inputs(void **unused)
 		assert_true(strlen(err) > 10);
 	}
 	char err[256] = "";
-	struct human_def d = { 3, 75, HUMAN_MALE };
+	struct human_def d = { .stature = 3, .mass = 75, .sex = HUMAN_MALE };
 	assert_null(human_build(&d, err, sizeof err));
 	assert_non_null(strstr(err, "stature"));
 	d = (struct human_def){ 1.75, -1, HUMAN_MALE };

@@ -448,7 +448,7 @@ build_joints(struct hb *h)
 struct human_def
 human_default_def(enum human_sex sex)
 {
-	struct human_def d = { 1.75, 75.0, HUMAN_MALE };
+	struct human_def d = { .stature = 1.75, .mass = 75.0, .sex = HUMAN_MALE };
 	if (sex == HUMAN_FEMALE) {
 		d.stature = 1.628;
 		d.mass = 67.7;

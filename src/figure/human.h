@@ -48,6 +48,7 @@
 
 #include <stddef.h>
 
+#include "figure/measures.h"
 #include "figure/model.h"
 
 #define HUMAN_NSEG 37
@@ -94,6 +95,14 @@ struct human_def {
 	double stature; /* m */
 	double mass;    /* kg */
 	enum human_sex sex;
+	/*
+	 * ANSUR II measures the build must meet (mm; weightkg in kg), each used
+	 * only where its bit (1u << HUMAN_M_x) is set in measure_given; a
+	 * zero-initialised definition gives none, the figure from stature, mass
+	 * and sex alone. Stature and mass stay in the two fields above.
+	 */
+	double measure[HUMAN_MEASURE_N];
+	unsigned measure_given;
 };
 
 /*
