@@ -179,7 +179,7 @@ dump_reply(int ok, const char *tag, json_t *result, const char *code, const char
 	return s;
 }
 
-/* bytes a request may not hold (PROTOCOL.md Framing) */
+/* bytes a request may not hold (docs/protocol.md Framing) */
 static int
 has_control_bytes(const char *line, size_t len)
 {
