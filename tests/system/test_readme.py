@@ -138,12 +138,14 @@ def usages(client):
     """(literal words, usage) of every command of the daemon's `help`"""
     out = []
     for entry in client.request("help")["commands"]:
-        for alt in re.split(r" \| (?=[a-z])", entry["usage"]):
+        verb = entry["usage"].split()[0]  # "layout VIEW... | layout off": two forms
+        for alt in re.split(r" \| (?=" + re.escape(verb) + " )", entry["usage"]):
             lead = []
             for w in alt.split():
                 if not re.fullmatch(r"[a-z_]+", w):
                     break
                 lead.append(w)
+            assert lead, f"a usage that starts with no word: {entry['usage']}"
             out.append((lead, entry["usage"]))
     return out
 
