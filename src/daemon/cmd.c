@@ -120,7 +120,7 @@ names_figure(const struct env *e, const char *word, int fig)
 }
 
 /*
- * The busy rule (issue 14): while the kiosk is in a step (a drag under
+ * The busy rule: while the kiosk is in a step (a drag under
  * way), a client's change to the figure it moves is refused, with the
  * kiosk's mode named, and so is any change of the whole environment
  * (undo, redo, a session loaded); reads, events and other figures go on.
