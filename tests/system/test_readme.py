@@ -1,15 +1,26 @@
-"""The README as a newcomer reads it: its picture is what `make run` shows today.
+"""The README and docs/ as a newcomer reads them: true to the product today.
 
-docs/kiosk.png is drawn by tools/readme-picture (the daemon started as the Makefile's
-`run` target starts it, the menu opened by a right click on the background); this test
-draws it again and compares.
+- The README's picture, docs/kiosk.png, is what `make run` shows: tools/readme-picture
+  draws it (the daemon started as the Makefile's `run` target starts it, the menu opened
+  by a right click on the background); a test draws it again and compares.
+- Every protocol command the pages show exists (the daemon's `help`), their ```posture
+  blocks run on a `make run` daemon, and the programs, make targets, files and links they
+  name exist; the dependencies page names every dependency; the layout page every module;
+  no page names an issue number.
 """
+import importlib.machinery
+import importlib.util
 import os
+import re
+import shlex
 import subprocess
 
 import numpy as np
+import pytest
 
 from conftest import BUILD, ROOT
+from daemon import daemon, daemon_factory  # noqa: F401 (fixtures)
+from posture import Client
 from posture.replay import read_png
 
 PICTURE = ROOT / "docs" / "kiosk.png"
@@ -56,16 +67,6 @@ def test_the_readme_picture_is_what_make_run_shows_now():
 #
 # Code blocks marked ```posture hold protocol lines (as typed in posturectl or at the kiosk);
 # ```sh blocks hold shell commands. Both are checked, in README.md and every docs/ page.
-
-import importlib.machinery  # noqa: E402  (the second half of the file)
-import importlib.util  # noqa: E402
-import re  # noqa: E402
-import shlex  # noqa: E402
-
-import pytest  # noqa: E402
-
-from daemon import daemon, daemon_factory  # noqa: E402,F401 (fixtures)
-from posture import Client  # noqa: E402
 
 PAGES = [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md"))
 FENCE = re.compile(r"^```(\w*)\n(.*?)^```", re.S | re.M)
