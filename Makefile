@@ -25,7 +25,7 @@ SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-re
 BUILD   ?= build
 VENV    := .venv
 PY      := $(VENV)/bin/python
-# Debian packages the build, tests and benchmarks need (see README: Dependencies)
+# Debian packages the build, tests and benchmarks need (see docs/dependencies.md)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
 	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils \
 	libxkbcommon-dev xkb-data libx11-data libdrm-dev

@@ -1,4 +1,4 @@
-"""The manipulation operator through the daemon (issue 13): `manipulate figure` starts the
+"""The manipulation operator through the daemon: `manipulate figure` starts the
 mode, `input` lines drive it as a mouse does, ESC ends it, `get manip` says where G is.
 The expected positions are Appendix B's geometry computed here in Python from the mouse
 lines the daemon's `pick` gives (the mouse line itself is checked against PyGLM in
