@@ -8,9 +8,11 @@ The files: every dbc/*.dbc, and every *_generated.dbc that opendbc's own generat
 (dbc/generator/generator.py, run here into a temporary folder) makes from this revision.
 For each: whether cantools (strict=False, as dbc2panel loads) reads the file as cantools
 reads files (load_file); the repairs dbc2panel makes, by kind (dbc2panel's DEFECTS); of
-those, the kinds cantools refuses, found by leaving each kind unrepaired in turn and
-asking cantools again; and whether cantools reads the repaired text and dbc2panel writes
-a map. tests/tools/test_dbc2panel_opendbc.py checks survey.txt is what this prints.
+those, the kinds cantools refuses: each kind without whose repair (all others made)
+cantools still refuses the file, or, where no one kind is needed so, the kinds whose
+repair alone makes it readable (a|b: either); and whether cantools reads the repaired
+text and dbc2panel writes a map. tests/tools/test_dbc2panel_opendbc.py checks survey.txt
+is what this prints.
 """
 
 import collections
@@ -113,7 +115,8 @@ def survey_file(mod, path):
 
 def report(results, out):
     """the survey's text: one line a file, then the counts"""
-    order = list(load_dbc2panel().DEFECTS)
+    defects = load_dbc2panel().DEFECTS
+    order = list(defects)
     print(f"# opendbc {REVISION[:12]}'s DBC files and cantools {cantools.__version__}: "
           "read as is, the repairs dbc2panel makes,", file=out)
     print("# those cantools refuses (each left out in turn, cantools refuses the file), "
@@ -130,7 +133,6 @@ def report(results, out):
     print(f"\nfiles: {len(results)} ({len(results) - generated} in dbc/, {generated} generated)",
           file=out)
     print(f"refused by cantools as they are: {len(refused)}", file=out)
-    defects = load_dbc2panel().DEFECTS
     for kind in order:
         n = sum(1 for _, r in refused if kind in r["refused_for"])
         if n:
@@ -138,10 +140,10 @@ def report(results, out):
     for either in sorted({k for _, r in refused for k in r["refused_for"] if "|" in k}):
         n = sum(1 for _, r in refused if either in r["refused_for"])
         print(f"  for {either} (either repair alone makes it readable): {n}", file=out)
-    print(f"read after repair, with a map written: "
-          f"{sum(1 for _, r in refused if r['after'] is None and r['mapped'])} of the "
-          f"{len(refused)} refused; {sum(1 for _, r in results if r['after'] is None and r['mapped'])}"
-          f" of all {len(results)}", file=out)
+    def converts(rs):
+        return sum(1 for _, r in rs if r["after"] is None and r["mapped"])
+    print(f"read after repair, with a map written: {converts(refused)} of the {len(refused)} "
+          f"refused; {converts(results)} of all {len(results)}", file=out)
     for kind in order:
         n = sum(1 for _, r in results if kind in r["made"])
         if n:
