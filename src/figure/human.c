@@ -355,6 +355,39 @@ build_limbs(struct hb *h, int s)
 #undef SITE
 }
 
+/* the anthropometric landmarks (human_dims.c placed them), after each segment's other sites */
+static void
+build_landmarks(struct hb *h)
+{
+	static const int limb[] = {
+		[HUMAN_LM_THIGH] = HUMAN_LIMB_THIGH,       [HUMAN_LM_SHANK] = HUMAN_LIMB_SHANK,
+		[HUMAN_LM_FOOT] = HUMAN_LIMB_FOOT,         [HUMAN_LM_TOES] = HUMAN_LIMB_TOES,
+		[HUMAN_LM_CLAVICLE] = HUMAN_LIMB_CLAVICLE, [HUMAN_LM_UPPERARM] = HUMAN_LIMB_UPPERARM,
+		[HUMAN_LM_FOREARM] = HUMAN_LIMB_FOREARM,   [HUMAN_LM_HAND] = HUMAN_LIMB_HAND,
+	};
+	for (int i = 0; i < HUMAN_LM_N; i++) {
+		const struct human_landmark_info *lm = &human_landmark_info[i];
+		for (int s = 0; s < (lm->bilateral ? 2 : 1); s++) {
+			int seg;
+			char name[MODEL_NAME_MAX];
+			if (lm->seg == HUMAN_LM_PELVIS)
+				seg = HUMAN_SEG_PELVIS;
+			else if (lm->seg == HUMAN_LM_T1)
+				seg = HUMAN_SEG_SLICE0 + HUMAN_NSLICE - 1;
+			else if (lm->seg == HUMAN_LM_HEAD)
+				seg = HUMAN_SEG_HEAD;
+			else
+				seg = HUMAN_SEG_LIMB + HUMAN_LIMB_N * s + limb[lm->seg];
+			/* a limb segment is one side's: its sites need no suffix */
+			int suffix = lm->bilateral && lm->seg < HUMAN_LM_THIGH;
+			snprintf(name, sizeof name, "%s%s", lm->name, suffix ? human_side_sfx[s] : "");
+			double p[3];
+			side_pt(h->L->lm[i], s, p);
+			add_site(h, seg, name, p);
+		}
+	}
+}
+
 /* adds joint `name` from site `from` (segment.site) to segment `to_seg`'s origin */
 static void
 add_joint(struct hb *h, const char *name, const char *from_seg, const char *from_site,
@@ -492,7 +525,10 @@ human_build(const struct human_def *d, char *err, size_t errlen)
 	if (!L)
 		return reject_msg(err, errlen, "human: out of memory");
 	*L = L_zero;
-	human_layout_make(d, L);
+	if (human_layout_make(d, L, err, errlen) < 0) {
+		free(L);
+		return NULL;
+	}
 	struct hb h = { model_builder_create(d->sex == HUMAN_FEMALE ? "human_female" : "human_male"),
 			L, { 0 }, 0 };
 	if (!h.b) {
@@ -507,6 +543,7 @@ human_build(const struct human_def *d, char *err, size_t errlen)
 	build_head(&h);
 	build_limbs(&h, 0);
 	build_limbs(&h, 1);
+	build_landmarks(&h);
 	build_joints(&h);
 	double com[3];
 	human_layout_com(L, com);

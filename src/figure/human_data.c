@@ -209,7 +209,8 @@ human_torso_semi(const struct human_layout *L, double y, double *hw, double *hd)
 		{ 0.835, 0.072, 0.050 }, { 0.870, 0.040, 0.040 },
 	};
 	int n = (int)(sizeof tab / sizeof tab[0]);
-	double f = y / L->H;
+	/* the outline is today's figure's: a moved trunk looks it up where today's is */
+	double f = (L->dim.measured ? human_trunk_unmap(L, y) : y) / L->H;
 	int i = 0;
 	while (i < n - 2 && f > tab[i + 1][0])
 		i++;
@@ -333,26 +334,25 @@ dl_inertia(const struct human_dl_row *row, double m, double len, int sag_axis, i
 	inertia_rotated(d, R ? R : id, dest);
 }
 
-/* joint centres and landmarks for ankle offset za */
+/* joint centres for ankle offset za */
 static void
 lay_points(struct human_layout *L, double za)
 {
+	const struct human_dims *D = &L->dim;
 	double H = L->H, k = L->k;
 	const struct human_dl_row *dl = L->dl->seg;
 	L->za = za;
-	/* legs: Drillis & Contini heights, Hara et al. hip joint centres */
-	double ll = (human_dc_hip - human_dc_ankle) * H + 0.009;
-	ll /= 1 - 0.078;
-	double hx = 0.008 + 0.086 * ll, y_asis = human_dc_hip * H + 0.009 + 0.078 * ll;
-	vset(L->hip, hx, human_dc_hip * H, 0);
-	vset(L->knee, hx, human_dc_knee * H, 0);
-	vset(L->ankle, hx, human_dc_ankle * H, za);
-	double lf = human_dc_foot_length * H, heel_z = za - 0.25 * lf;
+	/* legs: Drillis & Contini heights, Hara et al. hip joint centres (human_dims.c) */
+	double hx = D->hx, y_asis = D->y_asis;
+	vset(L->hip, hx, D->y_hip, 0);
+	vset(L->knee, hx, D->y_knee, 0);
+	vset(L->ankle, hx, D->y_ankle, za);
+	double lf = D->lf, heel_z = za - 0.25 * lf;
 	vset(L->heel, hx, 0, heel_z);
 	vset(L->mtp, hx, 0.011 * H, heel_z + 0.73 * lf);
 	vset(L->tip, hx, 0, heel_z + lf);
 	vset(L->balance, hx, 0, za + HUMAN_BALANCE_AHEAD * H);
-	double fw = human_dc_foot_width * H;
+	double fw = D->fw;
 	vset(L->foot_box[0], hx - fw / 2, 0, heel_z);
 	vset(L->foot_box[1], hx + fw / 2, L->ankle[1] + 0.010 * H, L->mtp[2]);
 	vset(L->toes_box[0], hx - 0.45 * fw, 0, L->mtp[2] - 0.004 * H);
@@ -374,16 +374,21 @@ lay_points(struct human_layout *L, double za)
 	}
 	L->y_supr = human_dc_hip * H + (dl[HUMAN_DL_LPT].len + dl[HUMAN_DL_MPT].len +
 					dl[HUMAN_DL_UPT].len) * k;
+	if (D->measured) {
+		for (int i = 0; i < HUMAN_NSLICE; i++)
+			L->spine[i][1] = human_trunk_map(L, L->spine[i][1]);
+		L->y_supr = human_trunk_map(L, L->y_supr);
+	}
 
 	/* shoulder girdle and arm, hanging with the palms facing the thighs */
 	double hw, hd;
 	human_torso_semi(L, L->y_supr, &hw, &hd);
 	vset(L->sc, 0.012 * H, L->y_supr, hd - 0.010 * H);
-	double ax = human_dc_shoulder_half * H;
-	vset(L->gh, ax, human_dc_shoulder * H, 0);
-	vset(L->elbow, ax, human_dc_elbow * H, 0);
-	vset(L->wrist, ax, human_dc_wrist * H, 0);
-	vset(L->fingertip, ax, human_dc_fingertip * H, 0);
+	double ax = D->gh_x;
+	vset(L->gh, ax, D->gh_y, 0);
+	vset(L->elbow, ax, D->y_elbow, 0);
+	vset(L->wrist, ax, D->y_wrist, 0);
+	vset(L->fingertip, ax, D->y_tip, 0);
 
 	/* head: skull from chin to vertex, eyes at eye height */
 	vset(L->head_semi, 0.044 * H, (1 - human_dc_chin) * H / 2, 0.056 * H);
@@ -392,7 +397,7 @@ lay_points(struct human_layout *L, double za)
 	L->eye_r = 0.0069 * H;
 	double front = L->head_c[2] +
 		       L->head_semi[2] * sqrt(1 - (ex / L->head_semi[0]) * (ex / L->head_semi[0]));
-	vset(L->eye, ex, human_dc_eye * H, front - 0.4 * L->eye_r);
+	vset(L->eye, ex, D->y_eye, front - 0.4 * L->eye_r);
 }
 
 /* masses, centres of mass (layout frame) and inertia of every segment */
@@ -442,7 +447,7 @@ lay_masses(struct human_layout *L)
 	rod_frame(L->ankle, L->knee, R);
 	dl_inertia(&dl[HUMAN_DL_SHANK], m, len, 0, 2, 1, R, L->inertia[b + HUMAN_LIMB_SHANK]);
 	/* foot + toes: de Leva's foot, split by box volume; CoM at half ankle height */
-	double mf = dl_mass(L, HUMAN_DL_FOOT), lf = human_dc_foot_length * H, vol[2];
+	double mf = dl_mass(L, HUMAN_DL_FOOT), lf = L->dim.lf, vol[2];
 	for (int i = 0; i < 2; i++) {
 		const double(*bx)[3] = i ? L->toes_box : L->foot_box;
 		vol[i] = (bx[1][0] - bx[0][0]) * (bx[1][1] - bx[0][1]) * (bx[1][2] - bx[0][2]);
@@ -483,7 +488,7 @@ lay_masses(struct human_layout *L)
 	vset(L->com[b + HUMAN_LIMB_FOREARM], L->gh[0], L->elbow[1] - dl[HUMAN_DL_FOREARM].com * len, 0);
 	dl_inertia(&dl[HUMAN_DL_FOREARM], m, len, 2, 0, 1, id, L->inertia[b + HUMAN_LIMB_FOREARM]);
 	m = L->mass[b + HUMAN_LIMB_HAND] = dl_mass(L, HUMAN_DL_HAND);
-	len = dl[HUMAN_DL_HAND].len * k; /* wrist to third metacarpale */
+	len = L->dim.hand_len; /* wrist to third metacarpale */
 	vset(L->com[b + HUMAN_LIMB_HAND], L->gh[0], L->wrist[1] - dl[HUMAN_DL_HAND].com * len, 0);
 	dl_inertia(&dl[HUMAN_DL_HAND], m, len, 2, 0, 1, id, L->inertia[b + HUMAN_LIMB_HAND]);
 	for (int l = 0; l < HUMAN_LIMB_N; l++) {
@@ -567,8 +572,8 @@ human_layout_com(const struct human_layout *L, double dest[3])
  * solved so that the centre of mass lies above the balance references
  * (the centre of mass moves linearly with za: only the shanks and feet move).
  */
-void
-human_layout_make(const struct human_def *d, struct human_layout *L)
+int
+human_layout_make(const struct human_def *d, struct human_layout *L, char *err, size_t errlen)
 {
 	L->H = d->stature;
 	L->M = d->mass;
@@ -578,6 +583,9 @@ human_layout_make(const struct human_def *d, struct human_layout *L)
 	for (int s = 0; s < HUMAN_DL_N; s++)
 		sum += L->dl->seg[s].mass * (s >= HUMAN_DL_UPPERARM ? 2 : 1);
 	L->norm = 1 / sum;
+	human_dims_default(L);
+	if (d->measure_given && human_dims_measured(d, L, err, errlen) < 0)
+		return -1;
 	double c0[3], c1[3], dz = -0.05;
 	lay_points(L, 0);
 	lay_masses(L);
@@ -588,5 +596,5 @@ human_layout_make(const struct human_def *d, struct human_layout *L)
 	double slope = (c1[2] - c0[2]) / dz, ahead = HUMAN_BALANCE_AHEAD * L->H;
 	lay_points(L, (c0[2] - ahead) / (1 - slope));
 	lay_masses(L);
+	return human_landmarks_place(d, L, err, errlen);
 }
-
