@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Derives the built-in human's landmark offsets from ANSUR II (data/ansur2/*.csv).
+"""Derives the built-in human's landmark offsets from ANSUR II (data/ansur2/*.csv), and each
+measure's mean ratio to stature (what a build from measures takes for one not given).
 
 Each offset is the mean over a sex's subjects of one relation between their measures, divided
 by the subject's stature; src/figure/human_dims.c holds the printed values (to 4 decimals) and
@@ -79,12 +80,28 @@ def offsets(sex):
     return len(rows), out
 
 
+# the measures a manikin is built from (src/figure/measures.h), in its order
+MEASURES = ("stature acromialheight wristheight trochanterionheight kneeheightmidpatella "
+            "lateralmalleolusheight sittingheight eyeheightsitting acromionradialelength "
+            "radialestylionlength handlength footlength buttockkneelength kneeheightsitting "
+            "poplitealheight biacromialbreadth hipbreadth span thumbtipreach").split()
+
+
+def ratios(sex):
+    """Each measure's mean ratio to stature: what a build takes for a measure not given."""
+    rows = read(sex)
+    return {k: sum(r[k] / r["stature"] for r in rows) / len(rows) for k in MEASURES}
+
+
 def main():
     for sex in ("male", "female"):
         n, o = offsets(sex)
         print(f"{sex} (n = {n}), fractions of stature:")
         for k, v in o.items():
             print(f"  {k:16s} {v:8.4f}")
+        print(f"{sex}, each measure's mean ratio to stature:")
+        for k, v in ratios(sex).items():
+            print(f"  {k:24s} {v:8.5f}")
 
 
 if __name__ == "__main__":

@@ -596,5 +596,5 @@ human_layout_make(const struct human_def *d, struct human_layout *L, char *err, 
 	double slope = (c1[2] - c0[2]) / dz, ahead = HUMAN_BALANCE_AHEAD * L->H;
 	lay_points(L, (c0[2] - ahead) / (1 - slope));
 	lay_masses(L);
-	return human_landmarks_place(d, L, err, errlen);
+	return human_landmarks_place(L, err, errlen);
 }

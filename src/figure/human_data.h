@@ -215,6 +215,7 @@ struct human_dims {
 	double trunk_from;
 	double acromion[3];               /* the acromion (layout frame) */
 	double radiale_upper_y, radiale_y; /* the two radiale sites' heights */
+	double v[HUMAN_MEASURE_N];        /* measured: the measures met (m; weightkg in kg) */
 };
 
 /*
@@ -260,8 +261,7 @@ double human_trunk_map(const struct human_layout *L, double y);
 double human_trunk_unmap(const struct human_layout *L, double y);
 
 /* places the landmarks on the laid-out figure; 0, or -1 with why in err */
-int human_landmarks_place(const struct human_def *d, struct human_layout *L, char *err,
-			  size_t errlen);
+int human_landmarks_place(struct human_layout *L, char *err, size_t errlen);
 
 /* whole-body centre of mass of a layout */
 void human_layout_com(const struct human_layout *L, double dest[3]);

@@ -49,23 +49,29 @@
  *     small sideways offsets). ANSUR II's own subjects miss it by -52 to
  *     +34 mm (mean -10, SD 11: observers' error and how the arm hangs), and
  *     no rigid arm has its landmarks farther apart vertically than along
- *     it. With all four given the radiale has two sites: the end of the
- *     acromion-radiale length on the upper arm and the start of the
- *     radiale-stylion length on the forearm, the elbow joint centre midway;
- *     the gap between them is the measures' disagreement. With fewer given,
- *     the missing ones follow from the rest (a missing length keeps its
- *     default; wristheight alone splits the arm in the default proportion).
- *   - span = biacromialbreadth + 2 (arm + the acromion's overhang inside
- *     the shoulder joint): with both given the overhang is what is left;
- *     with one, the overhang keeps its ANSUR mean and the other follows.
+ *     it. So the radiale has two sites: the end of the acromion-radiale
+ *     length on the upper arm and the start of the radiale-stylion length on
+ *     the forearm, the elbow joint centre midway; the gap between them is
+ *     the measures' disagreement.
+ *   - span = 2 (the shoulder joint's distance from the midline + the arm
+ *     from the shoulder joint to the middle finger's tip), and
+ *     biacromialbreadth = 2 (that distance + the acromion's overhang
+ *     outside the joint): the overhang is what the two leave.
  * The offsets these leave free (the seat, the overhang, the radiale gap,
  * the knee's depths, the buttock, the shoulder blades) must stay within
  * bounds wider than every ANSUR II subject's; outside them the build is
  * refused with the measures that disagree named.
  *
- * A measure not given keeps the figure's default: a joint height keeps its
- * stature fraction unless a given height above it in the leg scales it
- * with it, a length its default length, an offset its ANSUR mean.
+ * With any measure given, one not given follows from the others where it
+ * closes one of the sets above (wristheight, else radialestylionlength,
+ * else acromionradialelength, else acromialheight with the radiales
+ * coinciding; span, else biacromialbreadth, with the overhang's mean), or
+ * where its landmark's offset is free (sittingheight, eyeheightsitting,
+ * the seated knee's measures, buttockkneelength, thumbtipreach,
+ * hipbreadth: the offset keeps its ANSUR mean); any other takes the ANSUR
+ * II mean of its ratio to stature (the sex's proportions at this stature).
+ * The daemon's `load human` gives all 20, those not given predicted from
+ * the given ones. With none, the figure is today's.
  */
 #include <math.h>
 #include <stdarg.h>
@@ -106,6 +112,17 @@ static const struct human_lm_fractions lm_male = {
 static const struct human_lm_fractions lm_female = {
 	0.0325, 0.0151, 0.0123, 0.0452, -0.0104, 0.0278, 0.0477, 0.1019,
 	0.0906, 0.1087, -0.0173, 0.0923, 0.0839, 0.0206, 0.0778, 0.0454,
+};
+
+/* each measure's ANSUR II mean ratio to stature (tools/ansur2_landmarks.py), measures.h's order */
+static const double ratio_male[HUMAN_MEASURE_N] = {
+	1.00000, 0.82026, 0.48252, 0.51285, 0.27799, 0.04152, 0.52306, 0.45823, 0.19087, 0.15252,
+	0.11007, 0.15444, 0.35186, 0.31547, 0.24464, 0.23682, 0.19696, 1.03302, 0.46235, 0,
+};
+
+static const double ratio_female[HUMAN_MEASURE_N] = {
+	1.00000, 0.81975, 0.48766, 0.51898, 0.27565, 0.03854, 0.52624, 0.45931, 0.19107, 0.14817,
+	0.11121, 0.15126, 0.36264, 0.31388, 0.23829, 0.22445, 0.21737, 1.01947, 0.45689, 0,
 };
 
 /*
@@ -152,8 +169,8 @@ static const char *const measure_name[HUMAN_MEASURE_N] = {
 #undef HUMAN_MEASURE_NAME
 };
 
-#define GIVEN(d, x) (((d)->measure_given >> HUMAN_M_##x) & 1u)
-#define MM(d, x) ((d)->measure[HUMAN_M_##x] / 1000)
+/* a measure of the figure built from measures (m) */
+#define M(L, x) ((L)->dim.v[HUMAN_M_##x])
 
 static const struct human_lm_fractions *
 fractions(const struct human_layout *L)
@@ -257,63 +274,37 @@ check_given(const struct human_def *d, char *err, size_t errlen)
 			return refuse(err, errlen, "human: %s must be a positive number of %s, not %g",
 				      measure_name[i], i == HUMAN_M_WEIGHTKG ? "kg" : "mm", v);
 	}
-	if (GIVEN(d, STATURE) && fabs(MM(d, STATURE) - d->stature) > 0.0005)
+	if ((d->measure_given >> HUMAN_M_STATURE & 1u) &&
+	    fabs(d->measure[HUMAN_M_STATURE] / 1000 - d->stature) > 0.0005)
 		return refuse(err, errlen, "human: stature %g m and stature=%g mm disagree", d->stature,
 			      d->measure[HUMAN_M_STATURE]);
-	if (GIVEN(d, WEIGHTKG) && fabs(d->measure[HUMAN_M_WEIGHTKG] - d->mass) > 1e-9 * d->mass)
+	if ((d->measure_given >> HUMAN_M_WEIGHTKG & 1u) &&
+	    fabs(d->measure[HUMAN_M_WEIGHTKG] - d->mass) > 1e-9 * d->mass)
 		return refuse(err, errlen, "human: mass %g kg and weightkg=%g disagree", d->mass,
 			      d->measure[HUMAN_M_WEIGHTKG]);
 	return 0;
 }
 
-/*
- * The legs' joint heights: a given one is met; one not given keeps its
- * stature fraction unless a given height above it sets the scale between
- * it and the next given point below (or the floor).
- */
+/* the legs' joint heights */
 static int
-leg_heights(const struct human_def *d, struct human_layout *L, char *err, size_t errlen)
+leg_heights(struct human_layout *L, char *err, size_t errlen)
 {
 	struct human_dims *D = &L->dim;
-	const struct human_lm_fractions *F = fractions(L);
 	double H = L->H;
-	const double frac[3] = { human_dc_ankle, human_dc_knee, human_dc_hip };
-	const int fixed[3] = { (int)GIVEN(d, LATERALMALLEOLUSHEIGHT), (int)GIVEN(d, KNEEHEIGHTMIDPATELLA),
-			       (int)GIVEN(d, TROCHANTERIONHEIGHT) };
-	const double val[3] = { MM(d, LATERALMALLEOLUSHEIGHT),
-				MM(d, KNEEHEIGHTMIDPATELLA) - F->midpatella_y * H,
-				MM(d, TROCHANTERIONHEIGHT) };
-	double y[3];
-	for (int i = 0; i < 3; i++) {
-		if (fixed[i]) {
-			y[i] = val[i];
-			continue;
-		}
-		int a = i + 1, b = i - 1;
-		while (a < 3 && !fixed[a])
-			a++;
-		while (b >= 0 && !fixed[b])
-			b--;
-		if (a == 3) {
-			y[i] = frac[i] * H;
-			continue;
-		}
-		double fb = b < 0 ? 0 : frac[b], yb = b < 0 ? 0 : val[b];
-		y[i] = yb + (frac[i] - fb) / (frac[a] - fb) * (val[a] - yb);
-	}
-	D->y_ankle = y[0];
-	D->y_knee = y[1];
-	D->y_hip = y[2];
-	if (within(y[0], 0.015, 0.08, H, "the ankle joint centre", "lateralmalleolusheight", err,
-		   errlen) < 0 ||
-	    within(y[1] - y[0], 0.15, 0.34, H, "the shank",
+	D->y_ankle = M(L, LATERALMALLEOLUSHEIGHT);
+	D->y_knee = M(L, KNEEHEIGHTMIDPATELLA) - fractions(L)->midpatella_y * H;
+	D->y_hip = M(L, TROCHANTERIONHEIGHT);
+	if (within(D->y_ankle, 0.015, 0.08, H, "the ankle joint centre", "lateralmalleolusheight",
+		   err, errlen) < 0 ||
+	    within(D->y_knee - D->y_ankle, 0.15, 0.34, H, "the shank",
 		   "kneeheightmidpatella against lateralmalleolusheight", err, errlen) < 0 ||
-	    within(y[2] - y[1], 0.13, 0.34, H, "the thigh",
+	    within(D->y_hip - D->y_knee, 0.13, 0.34, H, "the thigh",
 		   "trochanterionheight against kneeheightmidpatella", err, errlen) < 0 ||
-	    within(c7_height(L) - y[2], 0.2, 0.5, H, "the trunk from the hips to C7/T1",
+	    within(c7_height(L) - D->y_hip, 0.2, 0.5, H, "the trunk from the hips to C7/T1",
 		   "stature against trochanterionheight", err, errlen) < 0)
 		return -1;
-	double ll = (y[2] - y[0] + 0.009) / (1 - 0.078);
+	/* Hara et al. with this leg's length */
+	double ll = (D->y_hip - D->y_ankle + 0.009) / (1 - 0.078);
 	D->hx = 0.008 + 0.086 * ll;
 	return 0;
 }
@@ -335,71 +326,62 @@ struct arm {
 	double acromion_x, gh_x, overhang;
 };
 
+/*
+ * The arm hanging from the acromion and the shoulders' breadth; of the
+ * acromion-to-wrist set and of span and biacromial breadth at most one
+ * measure is NAN: the one that follows from the others.
+ */
 static int
-arm_solve(const struct human_def *d, const struct human_layout *L, const struct human_dims *D0,
-	  double overhang, struct arm *a, char *err, size_t errlen)
+arm_solve(const struct human_layout *L, double overhang, struct arm *a, char *err, size_t errlen)
 {
 	const struct human_lm_fractions *F = fractions(L);
-	double H = L->H, rx = RADIALE_X * H, sz = F->stylion_z * H;
-	/* today's drops: the lengths a missing measure keeps */
-	double vAR0 = D0->acromion[1] - D0->radiale_upper_y, vRS0 = D0->radiale_y - D0->y_wrist;
-	double vSD0 = D0->y_wrist - D0->y_tip, vAR = vAR0, vRS = vRS0, vSD = vSD0;
-	int g_ah = (int)GIVEN(d, ACROMIALHEIGHT), g_arl = (int)GIVEN(d, ACROMIONRADIALELENGTH);
-	int g_rsl = (int)GIVEN(d, RADIALESTYLIONLENGTH), g_wh = (int)GIVEN(d, WRISTHEIGHT);
-	if ((g_arl && drop(MM(d, ACROMIONRADIALELENGTH), fabs(overhang - rx), "acromionradialelength",
-			   &vAR, err, errlen) < 0) ||
-	    (g_rsl && drop(MM(d, RADIALESTYLIONLENGTH), hypot(rx, sz), "radialestylionlength", &vRS,
-			   err, errlen) < 0) ||
-	    (GIVEN(d, HANDLENGTH) && drop(MM(d, HANDLENGTH), sz, "handlength", &vSD, err, errlen) < 0))
+	double H = L->H, rx = RADIALE_X * H, sz = F->stylion_z * H, a_y = F->acromion_y * H;
+	double vAR = NAN, vRS = NAN, vSD = 0;
+	if ((!isnan(M(L, ACROMIONRADIALELENGTH)) &&
+	     drop(M(L, ACROMIONRADIALELENGTH), fabs(overhang - rx), "acromionradialelength", &vAR,
+		  err, errlen) < 0) ||
+	    (!isnan(M(L, RADIALESTYLIONLENGTH)) &&
+	     drop(M(L, RADIALESTYLIONLENGTH), hypot(rx, sz), "radialestylionlength", &vRS, err,
+		  errlen) < 0) ||
+	    drop(M(L, HANDLENGTH), sz, "handlength", &vSD, err, errlen) < 0)
 		return -1;
-	if (g_ah)
-		a->acromion_y = MM(d, ACROMIALHEIGHT);
-	else if (g_arl && g_rsl && g_wh)
-		a->acromion_y = MM(d, WRISTHEIGHT) + vRS + vAR;
-	else
-		a->acromion_y = human_trunk_map(L, D0->gh_y) + F->acromion_y * H;
-	double A = a->acromion_y;
-	if (!g_wh) {
+	double A = M(L, ACROMIALHEIGHT), W = M(L, WRISTHEIGHT);
+	if (isnan(A))
+		A = W + vRS + vAR;
+	if (isnan(W)) {
 		a->radiale_upper = a->radiale = A - vAR;
-		a->wrist = a->radiale - vRS;
+		W = a->radiale - vRS;
+	} else if (isnan(vAR)) {
+		a->radiale_upper = a->radiale = W + vRS;
+	} else if (isnan(vRS)) {
+		a->radiale_upper = a->radiale = A - vAR;
 	} else {
-		a->wrist = MM(d, WRISTHEIGHT);
-		if (g_arl && g_rsl) {
-			a->radiale_upper = A - vAR;
-			a->radiale = a->wrist + vRS;
-		} else if (g_arl) {
-			a->radiale_upper = a->radiale = A - vAR;
-		} else if (g_rsl) {
-			a->radiale_upper = a->radiale = a->wrist + vRS;
-		} else {
-			a->radiale_upper = a->radiale = A - (A - a->wrist) * vAR0 / (vAR0 + vRS0);
-		}
+		a->radiale_upper = A - vAR;
+		a->radiale = W + vRS;
 	}
-	a->tip = a->wrist - vSD;
+	a->acromion_y = A;
+	a->wrist = W;
+	a->tip = W - vSD;
 	/* span: the dactylions of arms held out sideways, each an arm's length outside its shoulder */
-	double arm = A - F->acromion_y * H - a->tip;
-	int g_bi = (int)GIVEN(d, BIACROMIALBREADTH), g_span = (int)GIVEN(d, SPAN);
-	a->overhang = F->acromion_x * H;
-	if (g_bi && g_span) {
-		a->acromion_x = MM(d, BIACROMIALBREADTH) / 2;
-		a->gh_x = MM(d, SPAN) / 2 - arm;
-		a->overhang = a->acromion_x - a->gh_x;
-	} else if (g_bi) {
-		a->acromion_x = MM(d, BIACROMIALBREADTH) / 2;
+	double arm = A - a_y - a->tip;
+	if (isnan(M(L, SPAN))) {
+		a->overhang = F->acromion_x * H;
+		a->acromion_x = M(L, BIACROMIALBREADTH) / 2;
 		a->gh_x = a->acromion_x - a->overhang;
-	} else if (g_span) {
-		a->gh_x = MM(d, SPAN) / 2 - arm;
+	} else if (isnan(M(L, BIACROMIALBREADTH))) {
+		a->overhang = F->acromion_x * H;
+		a->gh_x = M(L, SPAN) / 2 - arm;
 		a->acromion_x = a->gh_x + a->overhang;
 	} else {
-		a->gh_x = D0->gh_x;
-		a->acromion_x = a->gh_x + a->overhang;
+		a->gh_x = M(L, SPAN) / 2 - arm;
+		a->acromion_x = M(L, BIACROMIALBREADTH) / 2;
+		a->overhang = a->acromion_x - a->gh_x;
 	}
 	return 0;
 }
 
 static int
-arm_dims(const struct human_def *d, struct human_layout *L, const struct human_dims *D0,
-	 char *err, size_t errlen)
+arm_dims(struct human_layout *L, char *err, size_t errlen)
 {
 	struct human_dims *D = &L->dim;
 	const struct human_lm_fractions *F = fractions(L);
@@ -408,7 +390,13 @@ arm_dims(const struct human_def *d, struct human_layout *L, const struct human_d
 	/* the overhang changes the acromion-radiale length's slant a little: iterate to a fixed point */
 	double overhang = F->acromion_x * H;
 	for (int it = 0; it < 20; it++) {
-		if (arm_solve(d, L, D0, overhang, &a, err, errlen) < 0)
+		if (arm_solve(L, overhang, &a, err, errlen) < 0)
+			return -1;
+		if (within(a.overhang, OVERHANG_LO, OVERHANG_HI, H,
+			   "the acromion outside the shoulder joint",
+			   "span against biacromialbreadth and the arm", err, errlen) < 0 ||
+		    within(a.gh_x, 0.035, 0.2, H, "the shoulder joints from the midline",
+			   "biacromialbreadth or span against the arm", err, errlen) < 0)
 			return -1;
 		int done = fabs(a.overhang - overhang) < 1e-12;
 		overhang = a.overhang;
@@ -418,20 +406,15 @@ arm_dims(const struct human_def *d, struct human_layout *L, const struct human_d
 	double gh_y = a.acromion_y - F->acromion_y * H, elbow = (a.radiale_upper + a.radiale) / 2;
 	if (within(gh_y - c7_height(L), -0.2, 0, H, "the shoulder joints (against C7/T1)",
 		   "acromialheight against stature", err, errlen) < 0 ||
-	    within(gh_y - elbow, 0.09, 0.23, H, "the upper arm",
-		   "acromionradialelength, or acromialheight against the forearm", err, errlen) < 0 ||
-	    within(elbow - a.wrist, 0.09, 0.23, H, "the forearm",
-		   "radialestylionlength, or wristheight against the upper arm", err, errlen) < 0 ||
-	    within(a.wrist - a.tip, 0.06, 0.16, H, "the hand", "handlength", err, errlen) < 0 ||
 	    within(a.radiale_upper - a.radiale, RADIALE_GAP_LO, RADIALE_GAP_HI, H,
 		   "the gap between the two radiales",
 		   "acromialheight - wristheight against acromionradialelength + radialestylionlength",
 		   err, errlen) < 0 ||
-	    within(a.overhang, OVERHANG_LO, OVERHANG_HI, H,
-		   "the acromion outside the shoulder joint", "span against biacromialbreadth and the arm",
-		   err, errlen) < 0 ||
-	    within(a.gh_x, 0.06, 0.2, H, "the shoulder joints from the midline",
-		   "biacromialbreadth or span", err, errlen) < 0)
+	    within(gh_y - elbow, 0.09, 0.23, H, "the upper arm",
+		   "acromionradialelength", err, errlen) < 0 ||
+	    within(elbow - a.wrist, 0.09, 0.23, H, "the forearm",
+		   "radialestylionlength", err, errlen) < 0 ||
+	    within(a.wrist - a.tip, 0.06, 0.16, H, "the hand", "handlength", err, errlen) < 0)
 		return -1;
 	D->gh_x = a.gh_x;
 	D->gh_y = gh_y;
@@ -447,12 +430,27 @@ arm_dims(const struct human_def *d, struct human_layout *L, const struct human_d
 	return 0;
 }
 
-/* the seat's depth below the hip joint centres */
+/* the seat's depth below the hip joint centres: sittingheight's, or the ANSUR mean */
 static double
-seat_depth(const struct human_def *d, const struct human_layout *L)
+seat_depth(const struct human_layout *L)
 {
-	return GIVEN(d, SITTINGHEIGHT) ? MM(d, SITTINGHEIGHT) - (L->H - L->dim.y_hip)
-				       : fractions(L)->seat * L->H;
+	return L->dim.measured && !isnan(M(L, SITTINGHEIGHT))
+		       ? M(L, SITTINGHEIGHT) - (L->H - L->dim.y_hip)
+		       : fractions(L)->seat * L->H;
+}
+
+static const double *
+ratios(const struct human_layout *L)
+{
+	return L->dl == &human_dl_female ? ratio_female : ratio_male;
+}
+
+/* measure k not given: the mean ratio's value */
+static void
+fill(struct human_layout *L, int k)
+{
+	if (isnan(L->dim.v[k]))
+		L->dim.v[k] = ratios(L)[k] * L->H;
 }
 
 int
@@ -460,46 +458,69 @@ human_dims_measured(const struct human_def *d, struct human_layout *L, char *err
 {
 	if (check_given(d, err, errlen) < 0)
 		return -1;
-	struct human_dims *D = &L->dim, D0 = *D;
+	struct human_dims *D = &L->dim;
 	double H = L->H;
 	D->measured = 1;
-	if (leg_heights(d, L, err, errlen) < 0 || arm_dims(d, L, &D0, err, errlen) < 0)
+	for (int k = 0; k < HUMAN_MEASURE_N; k++)
+		D->v[k] = (d->measure_given >> k & 1u) ? d->measure[k] / 1000 : NAN;
+	D->v[HUMAN_M_STATURE] = H;
+	D->v[HUMAN_M_WEIGHTKG] = d->mass;
+	static const int plain[] = { HUMAN_M_LATERALMALLEOLUSHEIGHT, HUMAN_M_KNEEHEIGHTMIDPATELLA,
+				     HUMAN_M_TROCHANTERIONHEIGHT, HUMAN_M_HANDLENGTH,
+				     HUMAN_M_FOOTLENGTH };
+	for (size_t i = 0; i < sizeof plain / sizeof *plain; i++)
+		fill(L, plain[i]);
+	/* the arm: the first of these not given follows, the others take their means */
+	static const int arm[] = { HUMAN_M_WRISTHEIGHT, HUMAN_M_RADIALESTYLIONLENGTH,
+				   HUMAN_M_ACROMIONRADIALELENGTH, HUMAN_M_ACROMIALHEIGHT };
+	int follows = -1;
+	for (int i = 0; i < 4; i++) {
+		if (!isnan(D->v[arm[i]]))
+			continue;
+		if (follows < 0)
+			follows = arm[i];
+		else
+			fill(L, arm[i]);
+	}
+	/* span follows biacromialbreadth, or biacromialbreadth span */
+	if (isnan(D->v[HUMAN_M_SPAN]))
+		fill(L, HUMAN_M_BIACROMIALBREADTH);
+	if (leg_heights(L, err, errlen) < 0 || arm_dims(L, err, errlen) < 0)
 		return -1;
-	if (GIVEN(d, FOOTLENGTH)) {
-		D->lf = MM(d, FOOTLENGTH);
-		if (within(D->lf, 0.10, 0.21, H, "the foot", "footlength", err, errlen) < 0)
-			return -1;
-	}
-	if (GIVEN(d, EYEHEIGHTSITTING)) {
-		D->y_eye = D->y_hip - seat_depth(d, L) + MM(d, EYEHEIGHTSITTING);
-		if (within(H - D->y_eye, 0.03, 0.11, H, "the eyes below the vertex",
-			   "eyeheightsitting against sittingheight", err, errlen) < 0)
-			return -1;
-	}
+	D->lf = M(L, FOOTLENGTH);
+	if (isnan(M(L, EYEHEIGHTSITTING))) /* the eyes the mean depth below the vertex */
+		D->y_eye = H - (ratios(L)[HUMAN_M_SITTINGHEIGHT] - ratios(L)[HUMAN_M_EYEHEIGHTSITTING]) * H;
+	else
+		D->y_eye = D->y_hip - seat_depth(L) + M(L, EYEHEIGHTSITTING);
+	if (within(D->lf, 0.10, 0.21, H, "the foot", "footlength", err, errlen) < 0 ||
+	    within(H - D->y_eye, 0.03, 0.11, H, "the eyes below the vertex",
+		   "eyeheightsitting against sittingheight", err, errlen) < 0)
+		return -1;
 	return 0;
 }
 
 int
-human_landmarks_place(const struct human_def *d, struct human_layout *L, char *err, size_t errlen)
+human_landmarks_place(struct human_layout *L, char *err, size_t errlen)
 {
 	const struct human_dims *D = &L->dim;
 	const struct human_lm_fractions *F = fractions(L);
 	double H = L->H, y_a = L->ankle[1];
 	/* seated, the shank hangs straight below the knee and the foot is flat */
 	double shank = hypot(L->knee[1] - L->ankle[1], L->knee[2] - L->ankle[2]);
-	double seat = seat_depth(d, L);
-	double supra = GIVEN(d, KNEEHEIGHTSITTING) ? MM(d, KNEEHEIGHTSITTING) - shank - y_a
-						   : F->suprapatella * H;
-	double popl = GIVEN(d, POPLITEALHEIGHT) ? shank + y_a - MM(d, POPLITEALHEIGHT)
-						: F->popliteal * H;
-	double butt = GIVEN(d, BUTTOCKKNEELENGTH)
-			      ? MM(d, BUTTOCKKNEELENGTH) - (L->hip[1] - L->knee[1]) - supra
-			      : F->buttock * H;
+	/* what a measure given sets; the ANSUR mean where none is */
+#define SET(x) (D->measured && !isnan(M(L, x)))
+	double seat = seat_depth(L);
+	double supra = SET(KNEEHEIGHTSITTING) ? M(L, KNEEHEIGHTSITTING) - shank - y_a
+					      : F->suprapatella * H;
+	double popl = SET(POPLITEALHEIGHT) ? shank + y_a - M(L, POPLITEALHEIGHT) : F->popliteal * H;
+	double butt = SET(BUTTOCKKNEELENGTH) ? M(L, BUTTOCKKNEELENGTH) - (L->hip[1] - L->knee[1]) - supra
+					     : F->buttock * H;
 	double sz = F->stylion_z * H, hand = hypot(L->wrist[1] - L->fingertip[1], sz);
 	double thumb_y = L->wrist[1] - PINCH * hand;
-	double blade = GIVEN(d, THUMBTIPREACH) ? MM(d, THUMBTIPREACH) - (L->gh[1] - thumb_y)
-					       : F->shoulder_blade * H;
-	double troch = GIVEN(d, HIPBREADTH) ? MM(d, HIPBREADTH) / 2 : F->trochanterion_x * H;
+	double blade = SET(THUMBTIPREACH) ? M(L, THUMBTIPREACH) - (L->gh[1] - thumb_y)
+					  : F->shoulder_blade * H;
+	double troch = SET(HIPBREADTH) ? M(L, HIPBREADTH) / 2 : F->trochanterion_x * H;
+#undef SET
 	if (within(seat, SEAT_LO, SEAT_HI, H, "the seat below the hip joint centres",
 		   "sittingheight against stature and trochanterionheight", err, errlen) < 0 ||
 	    within(supra, KNEE_DEPTH_LO, SUPRAPATELLA_HI, H, "the top of the knee above its axis, seated",
