@@ -441,7 +441,8 @@ test_impossible_measures_are_refused(void **unused)
 	assert_true(read_subjects(DATA "ANSUR_II_MALE_Public.csv", &s) > 0);
 	const double *v = s[0].v;
 	/* the seat above the hips: a sitting height far below stature less leg */
-	check_refused(v, ALL, HUMAN_M_SITTINGHEIGHT, v[HUMAN_M_SITTINGHEIGHT] - 200, "sittingheight");
+	check_refused(v, ALL & ~BIT(EYEHEIGHTSITTING), HUMAN_M_SITTINGHEIGHT,
+		      v[HUMAN_M_SITTINGHEIGHT] - 200, "the seat below the hip joint centres");
 	/* arm lengths that overshoot the drop from shoulder to wrist by 15 cm */
 	check_refused(v, ALL, HUMAN_M_ACROMIONRADIALELENGTH, v[HUMAN_M_ACROMIONRADIALELENGTH] + 150,
 		      "radiale");
