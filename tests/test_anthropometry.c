@@ -257,10 +257,10 @@ test_todays_man_measured(void **unused)
 	assert_near(v[HUMAN_M_HIPBREADTH], 2 * 0.0985 * H, tol);
 	/* span: shoulder joints 0.129 H out, each arm from the shoulder joint to the fingertip */
 	assert_near(v[HUMAN_M_SPAN], 2 * (0.129 + 0.818 - 0.377) * H, tol);
-	/* seated: the seat 0.0359 H below the hips, the eyes Drillis & Contini's 0.064 H below the vertex */
+	/* seated: the seat 0.0359 H below the hips, the eyes Drillis & Contini's 0.064 H below the top */
 	assert_near(v[HUMAN_M_SITTINGHEIGHT], (1 - 0.530 + 0.0359) * H, tol);
 	assert_near(v[HUMAN_M_EYEHEIGHTSITTING], (1 - 0.530 + 0.0359 - (1 - 0.936)) * H, tol);
-	/* thumbtip reach: the wall 0.0876 H behind the shoulder joint, the pinch 0.6 hands below the wrist */
+	/* thumbtip reach: the wall 0.0876 H behind the shoulder joint, the pinch 0.6 hands below wrist */
 	assert_near(v[HUMAN_M_THUMBTIPREACH],
 		    (0.0876 + 0.818 - 0.485 + 0.6 * hypot(hand, sz)) * H, tol);
 	/* buttock-knee: the buttock 0.0833 H behind the hip, the thigh, the knee's front 0.0356 H on */
@@ -415,7 +415,8 @@ test_subsets_of_measures_are_met(void **unused)
 
 /* a subject's measures with one changed, expected refused with `want` in the message */
 static void
-check_refused(const double v[HUMAN_MEASURE_N], unsigned given, int k, double value, const char *want)
+check_refused(const double v[HUMAN_MEASURE_N], unsigned given, int k, double value,
+	      const char *want)
 {
 	double w[HUMAN_MEASURE_N];
 	memcpy(w, v, sizeof w);
@@ -454,7 +455,8 @@ test_impossible_measures_are_refused(void **unused)
 	/* knees: the popliteal above the knee's top */
 	check_refused(v, ALL, HUMAN_M_POPLITEALHEIGHT, v[HUMAN_M_KNEEHEIGHTSITTING] + 10,
 		      "poplitealheight");
-	check_refused(v, ALL, HUMAN_M_KNEEHEIGHTMIDPATELLA, v[HUMAN_M_TROCHANTERIONHEIGHT], "kneeheightmidpatella");
+	check_refused(v, ALL, HUMAN_M_KNEEHEIGHTMIDPATELLA, v[HUMAN_M_TROCHANTERIONHEIGHT],
+		      "kneeheightmidpatella");
 	check_refused(v, ALL, HUMAN_M_THUMBTIPREACH, 300, "thumbtipreach");
 	check_refused(v, ALL, HUMAN_M_EYEHEIGHTSITTING, v[HUMAN_M_SITTINGHEIGHT] + 5,
 		      "eyeheightsitting");

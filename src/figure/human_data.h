@@ -8,6 +8,7 @@
 #define POSTURE_HUMAN_DATA_H
 
 #include "figure/human.h"
+#include "figure/human_dims.h"
 
 /* de Leva (1996) segments used here (Table 4 rows) */
 enum human_dl_seg {
@@ -193,32 +194,6 @@ struct human_landmark_info {
 extern const struct human_landmark_info human_landmark_info[HUMAN_LM_N];
 
 /*
- * Where the joint centres are, before the balance lean: the stature
- * fractions of today's figure, or what the given measures set (human_dims.c).
- * Heights are above the floor, lateral distances from the midline (left
- * side), metres.
- */
-struct human_dims {
-	int measured;                  /* 0: every value is today's stature fraction */
-	double y_ankle, y_knee, y_hip; /* joint centre heights */
-	double hx;                     /* hip joint centres from the midline */
-	double y_asis;                 /* anterior superior iliac spines, before the trunk map */
-	double lf, fw;                 /* foot length (heel to toe tip) and breadth */
-	double hand_len;               /* de Leva's hand segment: wrist to third metacarpale */
-	double gh_x, gh_y;             /* shoulder joint centre */
-	double y_elbow, y_wrist, y_tip, y_eye;
-	/*
-	 * The trunk map: heights between today's hip height (trunk_from) and
-	 * C7/T1 move linearly so that the hip is at y_hip and C7/T1 stays;
-	 * identity for today's figure.
-	 */
-	double trunk_from;
-	double acromion[3];               /* the acromion (layout frame) */
-	double radiale_upper_y, radiale_y; /* the two radiale sites' heights */
-	double v[HUMAN_MEASURE_N];        /* measured: the measures met (m; weightkg in kg) */
-};
-
-/*
  * The laid-out figure in its standing rest posture, in the layout frame (x
  * left, y up, z forward, the hip joint centres at z = 0). Landmark points
  * are the left side's; the right side is their mirror image. Per segment:
@@ -247,21 +222,9 @@ struct human_layout {
  * landmarks; returns 0, or -1 with why in err when the given measures are
  * out of range or disagree beyond what the body can meet (human_dims.c).
  */
-int human_layout_make(const struct human_def *d, struct human_layout *dest, char *err, size_t errlen);
+int human_layout_make(const struct human_def *d, struct human_layout *dest, char *err,
+		      size_t errlen);
 
-/* today's stature fractions (the figure from stature, mass and sex) */
-void human_dims_default(struct human_layout *L);
-
-/* overrides what d's given measures set; 0, or -1 with why in err */
-int human_dims_measured(const struct human_def *d, struct human_layout *L, char *err,
-			size_t errlen);
-
-/* a height of today's trunk moved onto this figure's, and back (the trunk map) */
-double human_trunk_map(const struct human_layout *L, double y);
-double human_trunk_unmap(const struct human_layout *L, double y);
-
-/* places the landmarks on the laid-out figure; 0, or -1 with why in err */
-int human_landmarks_place(struct human_layout *L, char *err, size_t errlen);
 
 /* whole-body centre of mass of a layout */
 void human_layout_com(const struct human_layout *L, double dest[3]);

@@ -73,36 +73,12 @@
  * The daemon's `load human` gives all 20, those not given predicted from
  * the given ones. With none, the figure is today's.
  */
+#include "figure/human_dims.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
-
-#include "figure/human_data.h"
-
-/*
- * ANSUR II means as fractions of stature (tools/ansur2_landmarks.py; the
- * relations are in its header), men and women.
- */
-struct human_lm_fractions {
-	double acromion_y;     /* acromion above the shoulder joint (ANSUR acromion-radiale
-				  length less de Leva's shoulder-to-elbow) */
-	double stylion_z;      /* stylion ahead of the wrist's axis (wrist circumference / 2 pi) */
-	double acromion_x;     /* acromion outside the shoulder joint (from span) */
-	double seat;           /* seat below the hip joint centres, sitting */
-	double midpatella_y;   /* midpatella above the knee joint centre */
-	double suprapatella;   /* suprapatella ahead of the knee axis (above it, seated) */
-	double popliteal;      /* popliteal behind the knee axis (below it, seated) */
-	double buttock;        /* buttock behind the hip joint centres */
-	double shoulder_blade; /* shoulder blades behind the shoulder joints */
-	double trochanterion_x; /* hip breadth / 2 */
-	double tibiale_y;      /* tibiale above the knee joint centre */
-	double iliocristale_y; /* iliocristale above the hip joint centre */
-	double iliocristale_x; /* bicristal breadth / 2 */
-	double malleolus_x;    /* bimalleolar breadth / 2 */
-	double tragion_y;      /* tragion below the vertex */
-	double tragion_x;      /* head breadth / 2 */
-};
 
 static const struct human_lm_fractions lm_male = {
 	0.0291, 0.0160, 0.0195, 0.0359, -0.0019, 0.0356, 0.0352, 0.0833,
@@ -113,6 +89,12 @@ static const struct human_lm_fractions lm_female = {
 	0.0325, 0.0151, 0.0123, 0.0452, -0.0104, 0.0278, 0.0477, 0.1019,
 	0.0906, 0.1087, -0.0173, 0.0923, 0.0839, 0.0206, 0.0778, 0.0454,
 };
+
+const struct human_lm_fractions *
+human_lm_fractions(int female)
+{
+	return female ? &lm_female : &lm_male;
+}
 
 /* each measure's ANSUR II mean ratio to stature (tools/ansur2_landmarks.py), measures.h's order */
 static const double ratio_male[HUMAN_MEASURE_N] = {
@@ -125,44 +107,6 @@ static const double ratio_female[HUMAN_MEASURE_N] = {
 	0.11121, 0.15126, 0.36264, 0.31388, 0.23829, 0.22445, 0.21737, 1.01947, 0.45689, 0,
 };
 
-/*
- * Assumptions (no single published value; fractions of stature): the
- * radiale a little outside the elbow joint centre (about half the elbow's
- * breadth); the pinch point of thumbtip reach (thumb tip on the index
- * finger) 0.6 hand lengths below the wrist and a little ahead of it; the
- * lateral femoral epicondyle and the tibiale about half the knee's breadth
- * out and in; the suprapatella a little above the knee axis standing; the
- * ischial tuberosities, buttocks, shoulder blades and cervicale where the
- * body's outline puts them (only their depth or height enters a measure).
- */
-#define RADIALE_X 0.014
-#define PINCH 0.6
-#define THUMB_Z 0.01
-#define EPICONDYLE_X 0.028
-#define TIBIALE_X 0.025
-#define SUPRAPATELLA_Y 0.02
-
-/* bounds of what the measures leave free, fractions of stature (every ANSUR II subject within) */
-#define SEAT_LO (-0.04)
-#define SEAT_HI 0.12
-#define KNEE_DEPTH_LO 0.005
-#define SUPRAPATELLA_HI 0.08
-#define POPLITEAL_HI 0.12
-#define BUTTOCK_LO 0.01
-#define BUTTOCK_HI 0.22
-#define BLADE_LO 0.01
-#define BLADE_HI 0.23
-#define OVERHANG_LO (-0.05)
-#define OVERHANG_HI 0.09
-#define RADIALE_GAP_LO (-0.05)
-#define RADIALE_GAP_HI 0.04
-
-const struct human_landmark_info human_landmark_info[HUMAN_LM_N] = {
-#define HUMAN_LM_INFO(e, name, seg, bilateral) { name, seg, bilateral },
-	HUMAN_LANDMARKS(HUMAN_LM_INFO)
-#undef HUMAN_LM_INFO
-};
-
 static const char *const measure_name[HUMAN_MEASURE_N] = {
 #define HUMAN_MEASURE_NAME(e, s) s,
 	HUMAN_MEASURES(HUMAN_MEASURE_NAME)
@@ -170,21 +114,7 @@ static const char *const measure_name[HUMAN_MEASURE_N] = {
 };
 
 /* a measure of the figure built from measures (m) */
-#define M(L, x) ((L)->dim.v[HUMAN_M_##x])
-
-static const struct human_lm_fractions *
-fractions(const struct human_layout *L)
-{
-	return L->dl == &human_dl_female ? &lm_female : &lm_male;
-}
-
-static void
-vset(double dest[3], double x, double y, double z)
-{
-	dest[0] = x;
-	dest[1] = y;
-	dest[2] = z;
-}
+#define M(D, x) ((D)->v[HUMAN_M_##x])
 
 static int refuse(char *err, size_t errlen, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
@@ -201,10 +131,9 @@ refuse(char *err, size_t errlen, const char *fmt, ...)
 	return -1;
 }
 
-/* 0 when v (m) lies in [lo, hi] stature fractions, else -1 saying what and from which measures */
-static int
-within(double v, double lo, double hi, double H, const char *what, const char *from, char *err,
-       size_t errlen)
+int
+human_dims_within(double v, double lo, double hi, double H, const char *what, const char *from,
+		  char *err, size_t errlen)
 {
 	if (v >= lo * H && v <= hi * H)
 		return 0;
@@ -213,94 +142,70 @@ within(double v, double lo, double hi, double H, const char *what, const char *f
 		      what, v * 1000, from, lo * H * 1000, hi * H * 1000);
 }
 
-void
-human_dims_default(struct human_layout *L)
-{
-	struct human_dims *D = &L->dim;
-	const struct human_lm_fractions *F = fractions(L);
-	double H = L->H, k = L->k;
-	memset(D, 0, sizeof *D);
-	/* Hara et al.: the hip joint centres from the leg length ASIS to malleolus */
-	double ll = (human_dc_hip - human_dc_ankle) * H + 0.009;
-	ll /= 1 - 0.078;
-	D->hx = 0.008 + 0.086 * ll;
-	D->y_asis = human_dc_hip * H + 0.009 + 0.078 * ll;
-	D->y_ankle = human_dc_ankle * H;
-	D->y_knee = human_dc_knee * H;
-	D->y_hip = human_dc_hip * H;
-	D->lf = human_dc_foot_length * H;
-	D->fw = human_dc_foot_width * H;
-	D->hand_len = L->dl->seg[HUMAN_DL_HAND].len * k;
-	D->gh_x = human_dc_shoulder_half * H;
-	D->gh_y = human_dc_shoulder * H;
-	D->y_elbow = human_dc_elbow * H;
-	D->y_wrist = human_dc_wrist * H;
-	D->y_tip = human_dc_fingertip * H;
-	D->y_eye = human_dc_eye * H;
-	D->trunk_from = D->y_hip;
-	vset(D->acromion, D->gh_x + F->acromion_x * H, D->gh_y + F->acromion_y * H, 0);
-	D->radiale_upper_y = D->radiale_y = D->y_elbow;
-}
+#define within human_dims_within
 
-/* C7/T1: one de Leva head length below the vertex, whatever the measures */
-static double
-c7_height(const struct human_layout *L)
+double
+human_trunk_map(const struct human_dims *D, double c7, double y)
 {
-	return L->H - L->dl->seg[HUMAN_DL_HEAD].len * L->k;
+	return D->y_hip + (y - D->trunk_from) * (c7 - D->y_hip) / (c7 - D->trunk_from);
 }
 
 double
-human_trunk_map(const struct human_layout *L, double y)
+human_trunk_unmap(const struct human_dims *D, double c7, double y)
 {
-	double top = c7_height(L), from = L->dim.trunk_from, to = L->dim.y_hip;
-	return to + (y - from) * (top - to) / (top - from);
+	return D->trunk_from + (y - D->y_hip) * (c7 - D->trunk_from) / (c7 - D->y_hip);
 }
 
 double
-human_trunk_unmap(const struct human_layout *L, double y)
+human_seat_depth(const struct human_dims *D, double H, int female)
 {
-	double top = c7_height(L), from = L->dim.trunk_from, to = L->dim.y_hip;
-	return from + (y - to) * (top - from) / (top - to);
+	return D->measured && !isnan(M(D, SITTINGHEIGHT)) ? M(D, SITTINGHEIGHT) - (H - D->y_hip)
+							  : human_lm_fractions(female)->seat * H;
+}
+
+static const double *
+ratios(int female)
+{
+	return female ? ratio_female : ratio_male;
 }
 
 static int
-check_given(const struct human_def *d, char *err, size_t errlen)
+check_given(const struct human_dims_in *in, char *err, size_t errlen)
 {
-	if (d->measure_given >> HUMAN_MEASURE_N)
-		return refuse(err, errlen, "human: unknown measures given (bits %#x)", d->measure_given);
+	if (in->given >> HUMAN_MEASURE_N)
+		return refuse(err, errlen, "human: unknown measures given (bits %#x)", in->given);
 	for (int i = 0; i < HUMAN_MEASURE_N; i++) {
-		double v = d->measure[i];
-		if (((d->measure_given >> i) & 1u) && !(v > 0 && isfinite(v)))
+		double v = in->measure[i];
+		if ((in->given >> i & 1u) && !(v > 0 && isfinite(v)))
 			return refuse(err, errlen, "human: %s must be a positive number of %s, not %g",
 				      measure_name[i], i == HUMAN_M_WEIGHTKG ? "kg" : "mm", v);
 	}
-	if ((d->measure_given >> HUMAN_M_STATURE & 1u) &&
-	    fabs(d->measure[HUMAN_M_STATURE] / 1000 - d->stature) > 0.0005)
-		return refuse(err, errlen, "human: stature %g m and stature=%g mm disagree", d->stature,
-			      d->measure[HUMAN_M_STATURE]);
-	if ((d->measure_given >> HUMAN_M_WEIGHTKG & 1u) &&
-	    fabs(d->measure[HUMAN_M_WEIGHTKG] - d->mass) > 1e-9 * d->mass)
-		return refuse(err, errlen, "human: mass %g kg and weightkg=%g disagree", d->mass,
-			      d->measure[HUMAN_M_WEIGHTKG]);
+	if ((in->given >> HUMAN_M_STATURE & 1u) &&
+	    fabs(in->measure[HUMAN_M_STATURE] / 1000 - in->H) > 0.0005)
+		return refuse(err, errlen, "human: stature %g m and stature=%g mm disagree", in->H,
+			      in->measure[HUMAN_M_STATURE]);
+	if ((in->given >> HUMAN_M_WEIGHTKG & 1u) &&
+	    fabs(in->measure[HUMAN_M_WEIGHTKG] - in->mass) > 1e-9 * in->mass)
+		return refuse(err, errlen, "human: mass %g kg and weightkg=%g disagree", in->mass,
+			      in->measure[HUMAN_M_WEIGHTKG]);
 	return 0;
 }
 
 /* the legs' joint heights */
 static int
-leg_heights(struct human_layout *L, char *err, size_t errlen)
+leg_heights(const struct human_dims_in *in, struct human_dims *D, char *err, size_t errlen)
 {
-	struct human_dims *D = &L->dim;
-	double H = L->H;
-	D->y_ankle = M(L, LATERALMALLEOLUSHEIGHT);
-	D->y_knee = M(L, KNEEHEIGHTMIDPATELLA) - fractions(L)->midpatella_y * H;
-	D->y_hip = M(L, TROCHANTERIONHEIGHT);
+	double H = in->H;
+	D->y_ankle = M(D, LATERALMALLEOLUSHEIGHT);
+	D->y_knee = M(D, KNEEHEIGHTMIDPATELLA) - human_lm_fractions(in->female)->midpatella_y * H;
+	D->y_hip = M(D, TROCHANTERIONHEIGHT);
 	if (within(D->y_ankle, 0.015, 0.08, H, "the ankle joint centre", "lateralmalleolusheight",
 		   err, errlen) < 0 ||
 	    within(D->y_knee - D->y_ankle, 0.15, 0.34, H, "the shank",
 		   "kneeheightmidpatella against lateralmalleolusheight", err, errlen) < 0 ||
 	    within(D->y_hip - D->y_knee, 0.13, 0.34, H, "the thigh",
 		   "trochanterionheight against kneeheightmidpatella", err, errlen) < 0 ||
-	    within(c7_height(L) - D->y_hip, 0.2, 0.5, H, "the trunk from the hips to C7/T1",
+	    within(in->c7 - D->y_hip, 0.2, 0.5, H, "the trunk from the hips to C7/T1",
 		   "stature against trochanterionheight", err, errlen) < 0)
 		return -1;
 	/* Hara et al. with this leg's length */
@@ -332,20 +237,21 @@ struct arm {
  * measure is NAN: the one that follows from the others.
  */
 static int
-arm_solve(const struct human_layout *L, double overhang, struct arm *a, char *err, size_t errlen)
+arm_solve(const struct human_dims_in *in, const struct human_dims *D, double overhang,
+	  struct arm *a, char *err, size_t errlen)
 {
-	const struct human_lm_fractions *F = fractions(L);
-	double H = L->H, rx = RADIALE_X * H, sz = F->stylion_z * H, a_y = F->acromion_y * H;
+	const struct human_lm_fractions *F = human_lm_fractions(in->female);
+	double H = in->H, rx = HUMAN_LM_RADIALE_X * H, sz = F->stylion_z * H, a_y = F->acromion_y * H;
 	double vAR = NAN, vRS = NAN, vSD = 0;
-	if ((!isnan(M(L, ACROMIONRADIALELENGTH)) &&
-	     drop(M(L, ACROMIONRADIALELENGTH), fabs(overhang - rx), "acromionradialelength", &vAR,
+	if ((!isnan(M(D, ACROMIONRADIALELENGTH)) &&
+	     drop(M(D, ACROMIONRADIALELENGTH), fabs(overhang - rx), "acromionradialelength", &vAR,
 		  err, errlen) < 0) ||
-	    (!isnan(M(L, RADIALESTYLIONLENGTH)) &&
-	     drop(M(L, RADIALESTYLIONLENGTH), hypot(rx, sz), "radialestylionlength", &vRS, err,
+	    (!isnan(M(D, RADIALESTYLIONLENGTH)) &&
+	     drop(M(D, RADIALESTYLIONLENGTH), hypot(rx, sz), "radialestylionlength", &vRS, err,
 		  errlen) < 0) ||
-	    drop(M(L, HANDLENGTH), sz, "handlength", &vSD, err, errlen) < 0)
+	    drop(M(D, HANDLENGTH), sz, "handlength", &vSD, err, errlen) < 0)
 		return -1;
-	double A = M(L, ACROMIALHEIGHT), W = M(L, WRISTHEIGHT);
+	double A = M(D, ACROMIALHEIGHT), W = M(D, WRISTHEIGHT);
 	if (isnan(A))
 		A = W + vRS + vAR;
 	if (isnan(W)) {
@@ -364,35 +270,34 @@ arm_solve(const struct human_layout *L, double overhang, struct arm *a, char *er
 	a->tip = W - vSD;
 	/* span: the dactylions of arms held out sideways, each an arm's length outside its shoulder */
 	double arm = A - a_y - a->tip;
-	if (isnan(M(L, SPAN))) {
+	if (isnan(M(D, SPAN))) {
 		a->overhang = F->acromion_x * H;
-		a->acromion_x = M(L, BIACROMIALBREADTH) / 2;
+		a->acromion_x = M(D, BIACROMIALBREADTH) / 2;
 		a->gh_x = a->acromion_x - a->overhang;
-	} else if (isnan(M(L, BIACROMIALBREADTH))) {
+	} else if (isnan(M(D, BIACROMIALBREADTH))) {
 		a->overhang = F->acromion_x * H;
-		a->gh_x = M(L, SPAN) / 2 - arm;
+		a->gh_x = M(D, SPAN) / 2 - arm;
 		a->acromion_x = a->gh_x + a->overhang;
 	} else {
-		a->gh_x = M(L, SPAN) / 2 - arm;
-		a->acromion_x = M(L, BIACROMIALBREADTH) / 2;
+		a->gh_x = M(D, SPAN) / 2 - arm;
+		a->acromion_x = M(D, BIACROMIALBREADTH) / 2;
 		a->overhang = a->acromion_x - a->gh_x;
 	}
 	return 0;
 }
 
 static int
-arm_dims(struct human_layout *L, char *err, size_t errlen)
+arm_dims(const struct human_dims_in *in, struct human_dims *D, char *err, size_t errlen)
 {
-	struct human_dims *D = &L->dim;
-	const struct human_lm_fractions *F = fractions(L);
-	double H = L->H;
+	const struct human_lm_fractions *F = human_lm_fractions(in->female);
+	double H = in->H;
 	struct arm a;
 	/* the overhang changes the acromion-radiale length's slant a little: iterate to a fixed point */
 	double overhang = F->acromion_x * H;
 	for (int it = 0; it < 20; it++) {
-		if (arm_solve(L, overhang, &a, err, errlen) < 0)
+		if (arm_solve(in, D, overhang, &a, err, errlen) < 0)
 			return -1;
-		if (within(a.overhang, OVERHANG_LO, OVERHANG_HI, H,
+		if (within(a.overhang, HUMAN_LM_OVERHANG_LO, HUMAN_LM_OVERHANG_HI, H,
 			   "the acromion outside the shoulder joint",
 			   "span against biacromialbreadth and the arm", err, errlen) < 0 ||
 		    within(a.gh_x, 0.035, 0.2, H, "the shoulder joints from the midline",
@@ -404,166 +309,81 @@ arm_dims(struct human_layout *L, char *err, size_t errlen)
 			break;
 	}
 	double gh_y = a.acromion_y - F->acromion_y * H, elbow = (a.radiale_upper + a.radiale) / 2;
-	if (within(gh_y - c7_height(L), -0.2, 0, H, "the shoulder joints (against C7/T1)",
+	if (within(gh_y - in->c7, -0.2, 0, H, "the shoulder joints (against C7/T1)",
 		   "acromialheight against stature", err, errlen) < 0 ||
-	    within(a.radiale_upper - a.radiale, RADIALE_GAP_LO, RADIALE_GAP_HI, H,
+	    within(a.radiale_upper - a.radiale, HUMAN_LM_RADIALE_GAP_LO, HUMAN_LM_RADIALE_GAP_HI, H,
 		   "the gap between the two radiales",
 		   "acromialheight - wristheight against acromionradialelength + radialestylionlength",
 		   err, errlen) < 0 ||
-	    within(gh_y - elbow, 0.09, 0.23, H, "the upper arm",
-		   "acromionradialelength", err, errlen) < 0 ||
-	    within(elbow - a.wrist, 0.09, 0.23, H, "the forearm",
-		   "radialestylionlength", err, errlen) < 0 ||
+	    within(gh_y - elbow, 0.09, 0.23, H, "the upper arm", "acromionradialelength", err,
+		   errlen) < 0 ||
+	    within(elbow - a.wrist, 0.09, 0.23, H, "the forearm", "radialestylionlength", err,
+		   errlen) < 0 ||
 	    within(a.wrist - a.tip, 0.06, 0.16, H, "the hand", "handlength", err, errlen) < 0)
 		return -1;
+	/* de Leva's hand segment (to the third metacarpale) in proportion to the whole hand */
+	D->hand_len *= (a.wrist - a.tip) / (D->y_wrist - D->y_tip);
 	D->gh_x = a.gh_x;
 	D->gh_y = gh_y;
 	D->y_elbow = elbow;
 	D->y_wrist = a.wrist;
 	D->y_tip = a.tip;
-	vset(D->acromion, a.acromion_x, a.acromion_y, 0);
+	D->acromion[0] = a.acromion_x;
+	D->acromion[1] = a.acromion_y;
+	D->acromion[2] = 0;
 	D->radiale_upper_y = a.radiale_upper;
 	D->radiale_y = a.radiale;
-	/* de Leva's hand segment (to the third metacarpale) in proportion to the whole hand */
-	D->hand_len = L->dl->seg[HUMAN_DL_HAND].len * L->k * (a.wrist - a.tip) /
-		      ((human_dc_wrist - human_dc_fingertip) * H);
 	return 0;
-}
-
-/* the seat's depth below the hip joint centres: sittingheight's, or the ANSUR mean */
-static double
-seat_depth(const struct human_layout *L)
-{
-	return L->dim.measured && !isnan(M(L, SITTINGHEIGHT))
-		       ? M(L, SITTINGHEIGHT) - (L->H - L->dim.y_hip)
-		       : fractions(L)->seat * L->H;
-}
-
-static const double *
-ratios(const struct human_layout *L)
-{
-	return L->dl == &human_dl_female ? ratio_female : ratio_male;
 }
 
 /* measure k not given: the mean ratio's value */
 static void
-fill(struct human_layout *L, int k)
+fill(const struct human_dims_in *in, struct human_dims *D, int k)
 {
-	if (isnan(L->dim.v[k]))
-		L->dim.v[k] = ratios(L)[k] * L->H;
+	if (isnan(D->v[k]))
+		D->v[k] = ratios(in->female)[k] * in->H;
 }
 
 int
-human_dims_measured(const struct human_def *d, struct human_layout *L, char *err, size_t errlen)
+human_dims_measured(const struct human_dims_in *in, struct human_dims *D, char *err, size_t errlen)
 {
-	if (check_given(d, err, errlen) < 0)
+	if (check_given(in, err, errlen) < 0)
 		return -1;
-	struct human_dims *D = &L->dim;
-	double H = L->H;
+	double H = in->H;
 	D->measured = 1;
 	for (int k = 0; k < HUMAN_MEASURE_N; k++)
-		D->v[k] = (d->measure_given >> k & 1u) ? d->measure[k] / 1000 : NAN;
+		D->v[k] = (in->given >> k & 1u) ? in->measure[k] / 1000 : NAN;
 	D->v[HUMAN_M_STATURE] = H;
-	D->v[HUMAN_M_WEIGHTKG] = d->mass;
+	D->v[HUMAN_M_WEIGHTKG] = in->mass;
 	static const int plain[] = { HUMAN_M_LATERALMALLEOLUSHEIGHT, HUMAN_M_KNEEHEIGHTMIDPATELLA,
 				     HUMAN_M_TROCHANTERIONHEIGHT, HUMAN_M_HANDLENGTH,
 				     HUMAN_M_FOOTLENGTH };
 	for (size_t i = 0; i < sizeof plain / sizeof *plain; i++)
-		fill(L, plain[i]);
+		fill(in, D, plain[i]);
 	/* the arm: the first of these not given follows, the others take their means */
 	static const int arm[] = { HUMAN_M_WRISTHEIGHT, HUMAN_M_RADIALESTYLIONLENGTH,
 				   HUMAN_M_ACROMIONRADIALELENGTH, HUMAN_M_ACROMIALHEIGHT };
-	int follows = -1;
+	int follows = 0;
 	for (int i = 0; i < 4; i++) {
 		if (!isnan(D->v[arm[i]]))
 			continue;
-		if (follows < 0)
-			follows = arm[i];
-		else
-			fill(L, arm[i]);
+		if (follows++)
+			fill(in, D, arm[i]);
 	}
 	/* span follows biacromialbreadth, or biacromialbreadth span */
 	if (isnan(D->v[HUMAN_M_SPAN]))
-		fill(L, HUMAN_M_BIACROMIALBREADTH);
-	if (leg_heights(L, err, errlen) < 0 || arm_dims(L, err, errlen) < 0)
+		fill(in, D, HUMAN_M_BIACROMIALBREADTH);
+	if (leg_heights(in, D, err, errlen) < 0 || arm_dims(in, D, err, errlen) < 0)
 		return -1;
-	D->lf = M(L, FOOTLENGTH);
-	if (isnan(M(L, EYEHEIGHTSITTING))) /* the eyes the mean depth below the vertex */
-		D->y_eye = H - (ratios(L)[HUMAN_M_SITTINGHEIGHT] - ratios(L)[HUMAN_M_EYEHEIGHTSITTING]) * H;
+	D->lf = M(D, FOOTLENGTH);
+	if (isnan(M(D, EYEHEIGHTSITTING))) /* the eyes the mean depth below the vertex */
+		D->y_eye = H - (ratios(in->female)[HUMAN_M_SITTINGHEIGHT] -
+				ratios(in->female)[HUMAN_M_EYEHEIGHTSITTING]) * H;
 	else
-		D->y_eye = D->y_hip - seat_depth(L) + M(L, EYEHEIGHTSITTING);
+		D->y_eye = D->y_hip - human_seat_depth(D, H, in->female) + M(D, EYEHEIGHTSITTING);
 	if (within(D->lf, 0.10, 0.21, H, "the foot", "footlength", err, errlen) < 0 ||
 	    within(H - D->y_eye, 0.03, 0.11, H, "the eyes below the vertex",
 		   "eyeheightsitting against sittingheight", err, errlen) < 0)
 		return -1;
-	return 0;
-}
-
-int
-human_landmarks_place(struct human_layout *L, char *err, size_t errlen)
-{
-	const struct human_dims *D = &L->dim;
-	const struct human_lm_fractions *F = fractions(L);
-	double H = L->H, y_a = L->ankle[1];
-	/* seated, the shank hangs straight below the knee and the foot is flat */
-	double shank = hypot(L->knee[1] - L->ankle[1], L->knee[2] - L->ankle[2]);
-	/* what a measure given sets; the ANSUR mean where none is */
-#define SET(x) (D->measured && !isnan(M(L, x)))
-	double seat = seat_depth(L);
-	double supra = SET(KNEEHEIGHTSITTING) ? M(L, KNEEHEIGHTSITTING) - shank - y_a
-					      : F->suprapatella * H;
-	double popl = SET(POPLITEALHEIGHT) ? shank + y_a - M(L, POPLITEALHEIGHT) : F->popliteal * H;
-	double butt = SET(BUTTOCKKNEELENGTH) ? M(L, BUTTOCKKNEELENGTH) - (L->hip[1] - L->knee[1]) - supra
-					     : F->buttock * H;
-	double sz = F->stylion_z * H, hand = hypot(L->wrist[1] - L->fingertip[1], sz);
-	double thumb_y = L->wrist[1] - PINCH * hand;
-	double blade = SET(THUMBTIPREACH) ? M(L, THUMBTIPREACH) - (L->gh[1] - thumb_y)
-					  : F->shoulder_blade * H;
-	double troch = SET(HIPBREADTH) ? M(L, HIPBREADTH) / 2 : F->trochanterion_x * H;
-#undef SET
-	if (within(seat, SEAT_LO, SEAT_HI, H, "the seat below the hip joint centres",
-		   "sittingheight against stature and trochanterionheight", err, errlen) < 0 ||
-	    within(supra, KNEE_DEPTH_LO, SUPRAPATELLA_HI, H, "the top of the knee above its axis, seated",
-		   "kneeheightsitting against the leg's heights", err, errlen) < 0 ||
-	    within(popl, KNEE_DEPTH_LO, POPLITEAL_HI, H, "the popliteal below the knee's axis, seated",
-		   "poplitealheight against the leg's heights", err, errlen) < 0 ||
-	    within(butt, BUTTOCK_LO, BUTTOCK_HI, H, "the buttocks behind the hip joint centres",
-		   "buttockkneelength against the thigh and kneeheightsitting", err, errlen) < 0 ||
-	    within(blade, BLADE_LO, BLADE_HI, H, "the shoulder blades behind the shoulder joints",
-		   "thumbtipreach against the arm", err, errlen) < 0 ||
-	    within(troch - D->hx, 0.005, 0.15, H, "the trochanterion outside the hip joint centre",
-		   "hipbreadth", err, errlen) < 0)
-		return -1;
-
-	double(*lm)[3] = L->lm;
-	const double *gh = L->gh, *knee = L->knee, *hip = L->hip;
-	double hx = D->hx, top = c7_height(L), hw, hd;
-	vset(lm[HUMAN_LM_ACROMION], D->acromion[0], D->acromion[1], D->acromion[2]);
-	vset(lm[HUMAN_LM_SHOULDER_BLADE], gh[0] - 0.05 * H, gh[1] - 0.04 * H, gh[2] - blade);
-	vset(lm[HUMAN_LM_RADIALE_UPPER], gh[0] + RADIALE_X * H, D->radiale_upper_y, 0);
-	vset(lm[HUMAN_LM_RADIALE], gh[0] + RADIALE_X * H, D->radiale_y, 0);
-	vset(lm[HUMAN_LM_STYLION], gh[0], L->wrist[1], sz);
-	vset(lm[HUMAN_LM_DACTYLION], gh[0], L->fingertip[1], 0);
-	vset(lm[HUMAN_LM_THUMBTIP], gh[0], thumb_y, sz + THUMB_Z * H);
-	vset(lm[HUMAN_LM_TROCHANTERION], troch, hip[1], 0);
-	vset(lm[HUMAN_LM_FEMORAL_EPICONDYLE], hx + EPICONDYLE_X * H, knee[1], 0);
-	vset(lm[HUMAN_LM_MIDPATELLA], hx, knee[1] + F->midpatella_y * H, supra);
-	vset(lm[HUMAN_LM_SUPRAPATELLA], hx, knee[1] + SUPRAPATELLA_Y * H, supra);
-	/* the knee's front when it is bent square: on the thigh's axis, as far from the knee's as the top */
-	vset(lm[HUMAN_LM_KNEE_FRONT], hx, knee[1] - supra, 0);
-	vset(lm[HUMAN_LM_POPLITEAL], hx, knee[1], -popl);
-	vset(lm[HUMAN_LM_TIBIALE], hx - TIBIALE_X * H, knee[1] + F->tibiale_y * H, 0);
-	vset(lm[HUMAN_LM_LATERAL_MALLEOLUS], hx + F->malleolus_x * H, y_a, L->ankle[2]);
-	vset(lm[HUMAN_LM_PTERNION], hx, 0.02 * H, L->heel[2]);
-	vset(lm[HUMAN_LM_ACROPODION], hx, 0.008 * H, L->tip[2]);
-	vset(lm[HUMAN_LM_ILIOCRISTALE], F->iliocristale_x * H, hip[1] + F->iliocristale_y * H, 0);
-	vset(lm[HUMAN_LM_ISCHIAL_TUBEROSITY], 0.03 * H, hip[1] - seat, -0.03 * H);
-	vset(lm[HUMAN_LM_BUTTOCK], 0.045 * H, hip[1] - 0.03 * H, -butt);
-	vset(lm[HUMAN_LM_TRAGION], F->tragion_x * H, H - F->tragion_y * H, L->head_c[2] - 0.01 * H);
-	vset(lm[HUMAN_LM_ECTOCANTHUS], L->eye[0] + L->eye_r, L->eye[1], L->eye[2] - 0.5 * L->eye_r);
-	vset(lm[HUMAN_LM_SELLION], 0, L->eye[1], L->head_c[2] + L->head_semi[2]);
-	vset(lm[HUMAN_LM_CERVICALE], 0, top, L->spine[HUMAN_NSLICE][2] - 0.035 * H);
-	human_torso_semi(L, L->y_supr, &hw, &hd);
-	vset(lm[HUMAN_LM_SUPRASTERNALE], 0, L->y_supr, hd);
 	return 0;
 }
