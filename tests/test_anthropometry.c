@@ -111,11 +111,12 @@ measure(const struct model *m, double dest[HUMAN_MEASURE_N])
 
 #define ALL ((1u << HUMAN_MEASURE_N) - 1)
 
+/* the figure with its landmark sites, measures given or not */
 static struct model *
 build_or_fail(const struct human_def *d)
 {
 	char err[256];
-	struct model *m = human_build(d, err, sizeof err);
+	struct model *m = human_build_landmarked(d, err, sizeof err);
 	if (!m)
 		fail_msg("human_build: %s", err);
 	return m;
@@ -227,7 +228,7 @@ test_landmarks_where_the_sources_put_them(void **unused)
 }
 
 /*
- * Today's man (1.75 m, 75 kg) measured: Drillis & Contini's stature
+ * Today's man (1.75 m, 75 kg, on his landmarked twin) measured: Drillis & Contini's stature
  * fractions (human_data.c) with the landmarks' ANSUR II offsets, worked out
  * by hand; the seated knee measures from the shank as built (it leans a
  * little for balance: the seated shank hangs straight).
@@ -523,10 +524,50 @@ test_other_figures_are_not_measured(void **unused)
 	model_free(m);
 }
 
+/*
+ * Today's figure (no measures) keeps its sites, and their order, as they
+ * were: the landmarks are on its twin, whose body is the same bit for bit.
+ */
+static void
+test_todays_figure_keeps_its_sites(void **unused)
+{
+	(void)unused;
+	for (int sex = 0; sex < 2; sex++) {
+		struct human_def d = human_default_def(sex ? HUMAN_FEMALE : HUMAN_MALE);
+		char err[256];
+		struct model *m = human_build(&d, err, sizeof err), *twin = build_or_fail(&d);
+		assert_non_null(m);
+		assert_int_equal(m->nsite, 101);
+		assert_int_equal(model_find_site(m, "thigh_l.trochanterion"), -1);
+		assert_int_equal(twin->nsite, 101 + 47);
+		assert_int_equal(m->nseg, twin->nseg);
+		assert_int_equal(m->ndof, twin->ndof);
+		assert_true(memcmp(m->seg_mass, twin->seg_mass, sizeof *m->seg_mass * (size_t)m->nseg) == 0);
+		assert_true(memcmp(m->seg_com, twin->seg_com, 3 * sizeof *m->seg_com * (size_t)m->nseg) == 0);
+		assert_true(memcmp(m->seg_inertia, twin->seg_inertia,
+				   6 * sizeof *m->seg_inertia * (size_t)m->nseg) == 0);
+		for (int k = 0; k < m->nsite; k++) {
+			char name[2 * MODEL_NAME_MAX];
+			int t = model_find_site(twin, model_site_fullname(m, k, name, sizeof name));
+			assert_true(t >= 0);
+			assert_true(memcmp(&m->site_pos[3 * k], &twin->site_pos[3 * t], 3 * sizeof(double)) == 0);
+		}
+		/* measuring today's figure measures its twin */
+		double a[HUMAN_MEASURE_N], b[HUMAN_MEASURE_N];
+		assert_int_equal(anthro_measure(m, a, err, sizeof err), -1);
+		assert_int_equal(anthro_measure_figure(m, &d, a, err, sizeof err), 0);
+		measure(twin, b);
+		assert_true(memcmp(a, b, sizeof a) == 0);
+		model_free(m);
+		model_free(twin);
+	}
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_todays_figure_keeps_its_sites),
 		cmocka_unit_test(test_landmarks_where_the_sources_put_them),
 		cmocka_unit_test(test_todays_man_measured),
 		cmocka_unit_test(test_every_subject_meets_its_measures),

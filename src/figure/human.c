@@ -507,8 +507,8 @@ reject_msg(char *err, size_t errlen, const char *msg)
 	return NULL;
 }
 
-struct model *
-human_build(const struct human_def *d, char *err, size_t errlen)
+static struct model *
+build(const struct human_def *d, int landmarks, char *err, size_t errlen)
 {
 	if (!d)
 		return reject_msg(err, errlen, "human: no definition");
@@ -543,7 +543,8 @@ human_build(const struct human_def *d, char *err, size_t errlen)
 	build_head(&h);
 	build_limbs(&h, 0);
 	build_limbs(&h, 1);
-	build_landmarks(&h);
+	if (landmarks)
+		build_landmarks(&h);
 	build_joints(&h);
 	double com[3];
 	human_layout_com(L, com);
@@ -562,4 +563,16 @@ human_build(const struct human_def *d, char *err, size_t errlen)
 	model_builder_free(h.b);
 	free(L);
 	return m;
+}
+
+struct model *
+human_build(const struct human_def *d, char *err, size_t errlen)
+{
+	return build(d, d && d->measure_given, err, errlen);
+}
+
+struct model *
+human_build_landmarked(const struct human_def *d, char *err, size_t errlen)
+{
+	return build(d, 1, err, errlen);
 }

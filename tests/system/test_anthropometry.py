@@ -72,7 +72,7 @@ def test_landmark_offsets_are_the_datas(sex):
     """Today's figure carries its landmarks at the offsets the script derives from ANSUR II
     (the C tables hold them to 4 decimals of stature)."""
     want = script_output()[sex]
-    s = sites("--human", "--sex", sex)
+    s = sites("--human", "--landmarks", "--sex", sex)
     h = s["head.vertex"][1]
 
     def x(site):
