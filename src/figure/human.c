@@ -31,6 +31,8 @@
  *   Bekerman I, Gottlieb P, Vaiman M (2014) Variations in eyeball diameters
  *     of the healthy adults, J Ophthalmol 2014:503645: ~24 mm diameter; with
  *     a density near water that is the usual 7.5 g eyeball mass.
+ *   Anthropometric landmarks and the build from ANSUR II measures: their
+ *     sources are in human_dims.c.
  * Documented assumptions (no single published value): L5/S1 at the height
  *   of the ASIS; the ankle joint above a point 1/4 of the foot length in
  *   front of the heel; the MTP joints 0.73 of the foot length from the heel

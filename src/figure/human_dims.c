@@ -1,13 +1,14 @@
 /*
- * human_dims.c - where the human's joint centres and surface landmarks go:
- * today's stature fractions (Drillis & Contini, Hara et al.; human.c), or
- * the ANSUR II measures a build is given (measures.h), met as
- * anthropometry/anthropometry.c measures them.
+ * human_dims.c - where the human's joint centres go when ANSUR II measures
+ * are given (measures.h), so that pose/anthropometry.c measures them back,
+ * and the landmark offsets (human_data.c places the landmarks; today's
+ * figure, with no measures, keeps the stature fractions of human.c's
+ * sources).
  *
  * Landmarks (sites by translation, left side; the right is mirrored) sit
  * at fixed offsets from the joint centres; the offsets are ANSUR II means
  * (fractions of stature, per sex; tools/ansur2_landmarks.py derives them
- * from data/ansur2), de Leva (1996), or assumptions named below. With
+ * from data/ansur2), de Leva (1996), or assumptions (human_dims.h). With
  * measures given, each measure sets one thing of the body, in an order in
  * which nothing set later changes a measure met earlier:
  *
