@@ -53,6 +53,7 @@ static const struct group_key group_table[] = {
 	{ "set", "root", G_FIGURES },
 	{ "set", "site", G_FIGURES },
 	{ "get", "site", G_FIGURES },
+	{ "get", "anthropometry", G_FIGURES },
 
 	{ "set", "joint", G_POSTURE },
 	{ "get", "joint", G_POSTURE },
