@@ -111,12 +111,12 @@ measure(const struct model *m, double dest[HUMAN_MEASURE_N])
 
 #define ALL ((1u << HUMAN_MEASURE_N) - 1)
 
-/* the figure with its landmark sites, measures given or not */
+/* the figure (with its landmark sites, measures given or not) */
 static struct model *
 build_or_fail(const struct human_def *d)
 {
 	char err[256];
-	struct model *m = human_build_landmarked(d, err, sizeof err);
+	struct model *m = human_build(d, err, sizeof err);
 	if (!m)
 		fail_msg("human_build: %s", err);
 	return m;
@@ -228,7 +228,7 @@ test_landmarks_where_the_sources_put_them(void **unused)
 }
 
 /*
- * Today's man (1.75 m, 75 kg, on his landmarked twin) measured: Drillis & Contini's stature
+ * Today's man (1.75 m, 75 kg) measured: Drillis & Contini's stature
  * fractions (human_data.c) with the landmarks' ANSUR II offsets, worked out
  * by hand; the seated knee measures from the shank as built (it leans a
  * little for balance: the seated shank hangs straight).
@@ -525,41 +525,73 @@ test_other_figures_are_not_measured(void **unused)
 }
 
 /*
- * Today's figure (no measures) keeps its sites, and their order, as they
- * were: the landmarks are on its twin, whose body is the same bit for bit.
+ * Every human carries the landmarks, built from measures or not, each
+ * segment's other sites in their order before them; an index of the human
+ * as built before it carried them (the sites `posture-figure sites` listed
+ * then, e.g. hand_r.palm 99 of 101) reads as that site.
  */
 static void
-test_todays_figure_keeps_its_sites(void **unused)
+test_every_human_carries_its_landmarks(void **unused)
 {
 	(void)unused;
-	for (int sex = 0; sex < 2; sex++) {
-		struct human_def d = human_default_def(sex ? HUMAN_FEMALE : HUMAN_MALE);
-		char err[256];
-		struct model *m = human_build(&d, err, sizeof err), *twin = build_or_fail(&d);
-		assert_non_null(m);
-		assert_int_equal(m->nsite, 101);
-		assert_int_equal(model_find_site(m, "thigh_l.trochanterion"), -1);
-		assert_int_equal(twin->nsite, 101 + 47);
-		assert_int_equal(m->nseg, twin->nseg);
-		assert_int_equal(m->ndof, twin->ndof);
-		assert_true(memcmp(m->seg_mass, twin->seg_mass, sizeof *m->seg_mass * (size_t)m->nseg) == 0);
-		assert_true(memcmp(m->seg_com, twin->seg_com, 3 * sizeof *m->seg_com * (size_t)m->nseg) == 0);
-		assert_true(memcmp(m->seg_inertia, twin->seg_inertia,
-				   6 * sizeof *m->seg_inertia * (size_t)m->nseg) == 0);
-		for (int k = 0; k < m->nsite; k++) {
-			char name[2 * MODEL_NAME_MAX];
-			int t = model_find_site(twin, model_site_fullname(m, k, name, sizeof name));
-			assert_true(t >= 0);
-			assert_true(memcmp(&m->site_pos[3 * k], &twin->site_pos[3 * t], 3 * sizeof(double)) == 0);
+	static const char *const limb[][2] = {
+		{ "clavicle", "acromion" },	{ "clavicle", "shoulder_blade" },
+		{ "upperarm", "radiale" },	{ "forearm", "radiale" },
+		{ "forearm", "stylion" },	{ "hand", "dactylion" },
+		{ "hand", "thumbtip" },		{ "thigh", "trochanterion" },
+		{ "thigh", "lateral_femoral_epicondyle" }, { "thigh", "midpatella" },
+		{ "thigh", "suprapatella" },	{ "thigh", "knee_front" },
+		{ "thigh", "popliteal" },	{ "shank", "tibiale" },
+		{ "shank", "lateral_malleolus" }, { "foot", "pternion" },
+		{ "toes", "acropodion" },
+	};
+	static const char *const trunk[] = {
+		"pelvis.iliocristale_l",  "pelvis.iliocristale_r",	 "pelvis.ischial_tuberosity_l",
+		"pelvis.ischial_tuberosity_r", "pelvis.buttock_l",	 "pelvis.buttock_r",
+		"head.tragion_l",	  "head.tragion_r",		 "head.ectocanthus_l",
+		"head.ectocanthus_r",	  "head.sellion",		 "head.cervicale",
+		"T1.suprasternale",
+	};
+	static const struct {
+		int old;
+		const char *name;
+	} before[] = {
+		{ 0, "pelvis.origin" },	      { 1, "pelvis.root" },	   { 6, "pelvis.lower_torso" },
+		{ 7, "L5.origin" },	      { 33, "T5.chest" },	   { 43, "T1.clavicle_r" },
+		{ 46, "head.vertex" },	      { 52, "eyeball_r.gaze" },	   { 60, "foot_l.heel" },
+		{ 65, "toes_l.tip" },	      { 75, "hand_l.palm" },	   { 84, "foot_r.heel" },
+		{ 94, "upperarm_r.elbow" },  { 99, "hand_r.palm" },	   { 100, "hand_r.fingertip" },
+	};
+	struct human_def defs[4] = { human_default_def(HUMAN_MALE), human_default_def(HUMAN_FEMALE),
+				     human_default_def(HUMAN_FEMALE), human_default_def(HUMAN_MALE) };
+	defs[2].stature = 1.45;
+	defs[3].measure[HUMAN_M_SITTINGHEIGHT] = 960;
+	defs[3].measure_given = 1u << HUMAN_M_SITTINGHEIGHT;
+	for (int f = 0; f < 4; f++) {
+		struct model *m = build_or_fail(&defs[f]);
+		char name[2 * MODEL_NAME_MAX];
+		assert_int_equal(m->nsite, 101 + 47);
+		for (size_t i = 0; i < sizeof limb / sizeof *limb; i++)
+			for (int side = 0; side < 2; side++) {
+				snprintf(name, sizeof name, "%s_%c.%s", limb[i][0], "lr"[side], limb[i][1]);
+				assert_true(model_find_site(m, name) >= 0);
+			}
+		for (size_t i = 0; i < sizeof trunk / sizeof *trunk; i++)
+			assert_true(model_find_site(m, trunk[i]) >= 0);
+		for (size_t i = 0; i < sizeof before / sizeof *before; i++) {
+			int k = human_site_before_landmarks(m, before[i].old);
+			assert_true(k >= 0);
+			assert_string_equal(model_site_fullname(m, k, name, sizeof name), before[i].name);
 		}
-		/* measuring today's figure measures its twin */
-		double a[HUMAN_MEASURE_N], b[HUMAN_MEASURE_N];
-		assert_int_equal(anthro_measure(m, a, err, sizeof err), -1);
-		assert_int_equal(anthro_measure_figure(m, &d, a, err, sizeof err), 0);
-		measure(twin, b);
-		assert_true(memcmp(a, b, sizeof a) == 0);
+		/* the 101 sites of before, each once, in their order; none past them */
+		for (int old = 0, last = -1; old < 101; old++) {
+			int k = human_site_before_landmarks(m, old);
+			assert_true(k > last);
+			last = k;
+		}
+		assert_int_equal(human_site_before_landmarks(m, 101), -1);
+		assert_int_equal(human_site_before_landmarks(m, -1), -1);
 		model_free(m);
-		model_free(twin);
 	}
 }
 
@@ -567,7 +599,7 @@ int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(test_todays_figure_keeps_its_sites),
+		cmocka_unit_test(test_every_human_carries_its_landmarks),
 		cmocka_unit_test(test_landmarks_where_the_sources_put_them),
 		cmocka_unit_test(test_todays_man_measured),
 		cmocka_unit_test(test_every_subject_meets_its_measures),

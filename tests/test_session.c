@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "pose/attach.h"
+#include "pose/behave.h"
 #include "figure/kin.h"
 #include "daemon/session.h"
 #include "daemon/words.h"
@@ -292,6 +293,94 @@ test_posture_file_applies_by_name_and_checks_first(void **unused)
 	env_clear(&e);
 }
 
+static char *
+slurp(const char *path, size_t *n)
+{
+	FILE *f = fopen(path, "rb");
+	assert_non_null(f);
+	fseek(f, 0, SEEK_END);
+	long len = ftell(f);
+	fseek(f, 0, SEEK_SET);
+	char *buf = malloc((size_t)len + 1);
+	assert_non_null(buf);
+	assert_int_equal(fread(buf, 1, (size_t)len, f), (size_t)len);
+	buf[len] = 0;
+	fclose(f);
+	*n = (size_t)len;
+	return buf;
+}
+
+/* the figure's site by name, which must exist */
+static int
+site_of(const struct model *m, const char *name)
+{
+	int k = model_find_site(m, name);
+	if (k < 0)
+		fail_msg("no site %s", name);
+	return k;
+}
+
+/* jack's hands held on the chest and the head, each as named */
+static void
+assert_hands_on_chest_and_head(const struct env *e)
+{
+	int f = env_find_figure(e, "jack");
+	assert_true(f >= 0);
+	const struct env_figure *fg = &e->fig[f];
+	assert_non_null(fg->behave);
+	assert_int_equal(fg->behave->p.hand[0], HAND_ON_SITE);
+	assert_int_equal(fg->behave->p.hand[1], HAND_ON_SITE);
+	assert_int_equal(fg->behave->p.hand_site[0], site_of(fg->model, "head.vertex"));
+	assert_int_equal(fg->behave->p.hand_site[1], site_of(fg->model, "T5.chest"));
+}
+
+/*
+ * A session saved before every human carried its landmark sites
+ * (tests/sessions/landmarks/README.md) loads as it was: its hands held on
+ * the chest and the head (the behaviour state held their sites' indices
+ * then, T5.chest 33 and head.vertex 46 of 101), its moved site, root and
+ * constraint as named. Written again, the hands' sites are named too.
+ */
+static void
+test_session_from_before_the_landmarks_loads(void **unused)
+{
+	(void)unused;
+	static struct env e, again;
+	size_t len, len2;
+	char *text = slurp("tests/sessions/landmarks/saved.session", &len), err[300];
+	env_init(&e);
+	assert_int_equal(session_read(text, len, ".", NULL, &e, err, sizeof err), 0);
+	assert_hands_on_chest_and_head(&e);
+	const struct env_figure *fg = &e.fig[env_find_figure(&e, "jack")];
+	const struct model *m = fg->model;
+	int palm = site_of(m, "hand_r.palm");
+	assert_true(m->site_moved[palm]);
+	assert_near(m->site_pos[3 * palm + 1], -0.06, 1e-15);
+	assert_near(m->site_pos[3 * palm + 2], 0.01, 1e-15);
+	assert_int_equal(fg->state->root_site, site_of(m, "toes_r.toe"));
+	int c = env_find_constraint(&e, "look");
+	assert_true(c >= 0);
+	assert_int_equal(e.con[c].def.effector_site, site_of(m, "head.between_eyes"));
+	assert_int_equal(e.con[c].def.goal_site, palm);
+
+	char *out = session_to_string(&e, &len2);
+	assert_non_null(out);
+	assert_non_null(strstr(out, " hand_l=head.vertex hand_r=T5.chest\n"));
+	env_init(&again);
+	assert_int_equal(session_read(out, len2, ".", NULL, &again, err, sizeof err), 0);
+	assert_hands_on_chest_and_head(&again);
+	env_clear(&again);
+	/* a hand's site that the figure does not have: nothing loads */
+	char *bad = strstr(out, "hand_r=T5.chest");
+	memcpy(bad + 8, "T5.chust", 8);
+	env_init(&again);
+	assert_int_equal(session_read(out, len2, ".", NULL, &again, err, sizeof err), -1);
+	assert_int_equal(env_count(&again), 0);
+	free(out);
+	free(text);
+	env_clear(&e);
+}
+
 int
 main(void)
 {
@@ -303,6 +392,7 @@ main(void)
 		cmocka_unit_test(test_attachments_round_trip_and_bad_ones_are_refused),
 		cmocka_unit_test(test_bad_sessions_load_nothing),
 		cmocka_unit_test(test_posture_file_applies_by_name_and_checks_first),
+		cmocka_unit_test(test_session_from_before_the_landmarks_loads),
 	};
 	return cmocka_run_group_tests_name("session", tests, NULL, NULL);
 }

@@ -29,8 +29,6 @@ static const char usage[] =
 	"  --mass KG             its body mass\n"
 	"  --measure NAME=VALUE  an ANSUR II measure the human must meet (mm; weightkg\n"
 	"                        in kg), e.g. sittingheight=918; repeatable\n"
-	"  --landmarks           the human with its anthropometric landmark sites even\n"
-	"                        without --measure (a figure from measures has them)\n"
 	"  --figure FILE         a figure file in the peabody language instead\n"
 	"posture (default: the figure's initial posture):\n"
 	"  --q-file FILE         postures, one a line: every dof value in order\n"
@@ -64,7 +62,7 @@ static const char usage[] =
 	"            (mm; weightkg in kg)\n";
 
 struct options {
-	int human, landmarks;
+	int human;
 	struct human_def hdef;
 	const char *figure, *qfile, *root, *command, *out;
 	long seed;
@@ -90,8 +88,7 @@ parse_options(int argc, char **argv, struct options *o)
 	unsigned given = 0;
 	for (int i = 1; i < argc; i++) {
 		const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-		int takes = strcmp(a, "--human") && strcmp(a, "--landmarks") && strncmp(a, "--help", 6) &&
-			    a[0] == '-' && a[1];
+		int takes = strcmp(a, "--human") && strncmp(a, "--help", 6) && a[0] == '-' && a[1];
 		if (takes && !v) {
 			fprintf(stderr, "posture-figure: %s needs a value\n", a);
 			return -1;
@@ -101,8 +98,6 @@ parse_options(int argc, char **argv, struct options *o)
 			exit(0);
 		} else if (!strcmp(a, "--human")) {
 			o->human = 1;
-		} else if (!strcmp(a, "--landmarks")) {
-			o->landmarks = 1;
 		} else if (!strcmp(a, "--sex")) {
 			if (strcmp(v, "male") && strcmp(v, "female")) {
 				fprintf(stderr, "posture-figure: --sex is male or female\n");
@@ -188,9 +183,8 @@ parse_options(int argc, char **argv, struct options *o)
 		o->hdef.stature = measure[HUMAN_M_STATURE] / 1000;
 	if ((given >> HUMAN_M_WEIGHTKG & 1u) && !mass_set)
 		o->hdef.mass = measure[HUMAN_M_WEIGHTKG];
-	if ((given || o->landmarks) && !o->human) {
-		fprintf(stderr, "posture-figure: --measure and --landmarks are for the built-in human, "
-			"not --figure\n");
+	if (given && !o->human) {
+		fprintf(stderr, "posture-figure: --measure is for the built-in human, not --figure\n");
 		return -1;
 	}
 	if (!o->command) {
@@ -330,11 +324,11 @@ write_urdf(const struct model *m, const struct state *s, const char *out)
 
 /* the figure measured in ANSUR II's postures, whatever the posture options; 0 or 1 (said) */
 static int
-print_measures(const struct model *m, const struct human_def *human)
+print_measures(const struct model *m)
 {
 	double v[HUMAN_MEASURE_N];
 	char err[256];
-	if (anthro_measure_figure(m, human, v, err, sizeof err) < 0) {
+	if (anthro_measure(m, v, err, sizeof err) < 0) {
 		fprintf(stderr, "posture-figure: %s\n", err);
 		return 1;
 	}
@@ -552,9 +546,8 @@ main(int argc, char **argv)
 	if (parse_options(argc, argv, &o) < 0)
 		return 2;
 	char err[512] = "";
-	struct model *m = !o.human      ? figure_read_file(o.figure, err, sizeof err)
-			  : o.landmarks ? human_build_landmarked(&o.hdef, err, sizeof err)
-					: human_build(&o.hdef, err, sizeof err);
+	struct model *m = o.human ? human_build(&o.hdef, err, sizeof err)
+				  : figure_read_file(o.figure, err, sizeof err);
 	if (!m) {
 		fprintf(stderr, "posture-figure: %s\n", err);
 		return 1;
@@ -580,7 +573,7 @@ main(int argc, char **argv)
 	}
 	/* the commands that take every posture at once */
 	if (!strcmp(o.command, "measures")) {
-		rc = print_measures(m, o.human ? &o.hdef : NULL);
+		rc = print_measures(m);
 		goto out;
 	}
 	if (!strcmp(o.command, "gltf") || !strcmp(o.command, "bvh")) {

@@ -14,7 +14,7 @@ cmd_get_anthropometry(struct cmd_ctx *c)
 	double v[HUMAN_MEASURE_N];
 	char err[256];
 	/* on a state of its own: the figure's posture stays as it is */
-	if (anthro_measure_figure(f->model, f->is_human ? &f->human : NULL, v, err, sizeof err) < 0)
+	if (anthro_measure(f->model, v, err, sizeof err) < 0)
 		return cmd_fail(c, strstr(err, "memory") ? "internal" : "bad-argument", "%s", err);
 	json_t *o = json_object();
 	for (int k = 0; k < HUMAN_MEASURE_N; k++)

@@ -9,6 +9,7 @@
 #include "pose/attach.h"
 #include "pose/behave.h"
 #include "figure/figure.h"
+#include "figure/human.h"
 #include "figure/kin.h"
 #include "daemon/words.h"
 
@@ -87,6 +88,15 @@ write_behave(const struct env_figure *fg, FILE *f)
 	int n = behave_pack(fg->behave, v, 256);
 	fprintf(f, "behave %s ", fg->name);
 	write_vec(f, v, n);
+	/* a hand held on a site: the site by name, as every site kept (its index may move) */
+	char site[2 * MODEL_NAME_MAX];
+	for (int k = 0; k < 2; k++) {
+		const struct behave_params *p = &fg->behave->p;
+		if (p->hand[k] == HAND_ON_SITE && p->hand_site[k] >= 0 &&
+		    p->hand_site[k] < fg->model->nsite)
+			fprintf(f, " hand_%c=%s", "lr"[k],
+				model_site_fullname(fg->model, p->hand_site[k], site, sizeof site));
+	}
 	fprintf(f, "\n");
 	for (int k = 0; k < BEHAVE_NCON; k++) {
 		fprintf(f, "bdef %s %d", fg->name, k);
@@ -414,7 +424,30 @@ read_def(struct reader *r, int from, const struct model *m, struct ik_constraint
 	return 0;
 }
 
-/* "behave FIG V0,V1,..." and "bdef FIG K fields": a figure's behaviours */
+/*
+ * The sites the hands are held on: by name (hand_l=, hand_r=), or, in what
+ * was written before names were, the packed site index; a human's from
+ * before it carried its landmark sites (figure/human.h). 0, or -1.
+ */
+static int
+behave_hand_sites(struct behave *b, const struct env_figure *f, const char *const name[2])
+{
+	for (int k = 0; k < 2; k++) {
+		int *site = &b->p.hand_site[k], on = b->p.hand[k] == HAND_ON_SITE;
+		if (name[k]) {
+			*site = model_find_site(f->model, name[k]);
+			if (!on || *site < 0)
+				return -1;
+		} else if (on && *site >= 0 && f->is_human) {
+			*site = human_site_before_landmarks(f->model, *site);
+			if (*site < 0)
+				return -1;
+		}
+	}
+	return 0;
+}
+
+/* "behave FIG V0,V1,... [hand_l=SITE] [hand_r=SITE]" and "bdef FIG K fields": a figure's behaviours */
 static int
 read_behave(struct reader *r, struct env *e)
 {
@@ -436,14 +469,24 @@ read_behave(struct reader *r, struct env *e)
 	int n = 1;
 	for (const char *c = w->w[2]; *c; c++)
 		n += *c == ',';
-	struct behave *b = f->behave ? f->behave : calloc(1, sizeof *b);
-	if (!b || n > 256 || w->n != 3 || words_list(w->w[2], UNIT_NONE, n, v) < 0 ||
-	    behave_unpack(b, f->model, v, n) < 0) {
-		if (b != f->behave)
-			free(b);
+	const char *hand_at[2] = { arg(w, 3, "hand_l"), arg(w, 3, "hand_r") };
+	int extra = (hand_at[0] != NULL) + (hand_at[1] != NULL);
+	/* unpacked into a copy (it keeps the constraints' definitions): nothing changes on an error */
+	static struct behave zero;
+	struct behave *b = malloc(sizeof *b);
+	if (b)
+		*b = f->behave ? *f->behave : zero;
+	if (!b || n > 256 || w->n != 3 + extra || words_list(w->w[2], UNIT_NONE, n, v) < 0 ||
+	    behave_unpack(b, f->model, v, n) < 0 || behave_hand_sites(b, f, hand_at) < 0) {
+		free(b);
 		return fail(r, "bad behaviour state for %s", f->name);
 	}
-	f->behave = b;
+	if (f->behave) {
+		*f->behave = *b;
+		free(b);
+	} else {
+		f->behave = b;
+	}
 	f->ik_stale = 1;
 	/* what the behaviours measure, measured again on the posture read above */
 	behave_measure(b, f->model, f->state);

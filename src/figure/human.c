@@ -357,7 +357,7 @@ build_limbs(struct hb *h, int s)
 #undef SITE
 }
 
-/* the anthropometric landmarks (human_dims.c placed them), after each segment's other sites */
+/* the anthropometric landmarks (human_data.c placed them), after each segment's other sites */
 static void
 build_landmarks(struct hb *h)
 {
@@ -509,8 +509,8 @@ reject_msg(char *err, size_t errlen, const char *msg)
 	return NULL;
 }
 
-static struct model *
-build(const struct human_def *d, int landmarks, char *err, size_t errlen)
+struct model *
+human_build(const struct human_def *d, char *err, size_t errlen)
 {
 	if (!d)
 		return reject_msg(err, errlen, "human: no definition");
@@ -545,12 +545,11 @@ build(const struct human_def *d, int landmarks, char *err, size_t errlen)
 	build_head(&h);
 	build_limbs(&h, 0);
 	build_limbs(&h, 1);
-	if (landmarks)
-		build_landmarks(&h);
-	build_joints(&h);
 	double com[3];
 	human_layout_com(L, com);
 	add_site(&h, HUMAN_SEG_PELVIS, "lower_torso", com);
+	build_landmarks(&h);
+	build_joints(&h);
 
 	/* root: the balance references' midpoint at the world origin */
 	double pos[3] = { 0, L->hip[1], -(L->za + HUMAN_BALANCE_AHEAD * L->H) }, q[4] = { 0, 0, 0, 1 };
@@ -567,14 +566,26 @@ build(const struct human_def *d, int landmarks, char *err, size_t errlen)
 	return m;
 }
 
-struct model *
-human_build(const struct human_def *d, char *err, size_t errlen)
+/* whether site `name` of a human is one of its landmarks (the names of no other site) */
+static int
+is_landmark(const char *name)
 {
-	return build(d, d && d->measure_given, err, errlen);
+	for (int i = 0; i < HUMAN_LM_N; i++) {
+		const struct human_landmark_info *lm = &human_landmark_info[i];
+		size_t n = strlen(lm->name);
+		if (!strncmp(name, lm->name, n) &&
+		    (!name[n] || ((!strcmp(name + n, "_l") || !strcmp(name + n, "_r")) &&
+				  lm->bilateral && lm->seg < HUMAN_LM_THIGH)))
+			return 1;
+	}
+	return 0;
 }
 
-struct model *
-human_build_landmarked(const struct human_def *d, char *err, size_t errlen)
+int
+human_site_before_landmarks(const struct model *m, int old)
 {
-	return build(d, 1, err, errlen);
+	for (int k = 0, n = 0; k < m->nsite && old >= 0; k++)
+		if (!is_landmark(m->site_name[k]) && n++ == old)
+			return k;
+	return -1;
 }

@@ -119,22 +119,30 @@ struct human_def human_default_def(enum human_sex sex);
  *
  * With measures given (measure_given != 0) the figure meets them as
  * pose/anthropometry.h measures it, within 2 mm and its mass exactly
- * (figure/human_dims.c says how, and what the measures not given become),
- * and it carries the surface landmarks anthropometry measures as sites:
- * acromion, shoulder_blade (clavicle_*); radiale (upperarm_*, where the
- * acromion-radiale length ends; forearm_*, where the radiale-stylion length
- * starts), stylion (forearm_*); dactylion, thumbtip (hand_*);
- * trochanterion, lateral_femoral_epicondyle, midpatella, suprapatella,
- * knee_front, popliteal (thigh_*); tibiale, lateral_malleolus (shank_*);
- * pternion (foot_*); acropodion (toes_*); iliocristale_l/_r,
- * ischial_tuberosity_l/_r, buttock_l/_r (pelvis); tragion_l/_r,
- * ectocanthus_l/_r, sellion, cervicale (head); suprasternale (T1). Without
- * measures it is today's figure, bit for bit and site for site: its site
- * indices, which posture hashes and recordings hold, stay as they were.
+ * (figure/human_dims.c says how, and what the measures not given become);
+ * without, it has the stature fractions of its sources (human.c).
+ *
+ * Every human carries the surface landmarks anthropometry measures as
+ * sites, after each segment's other sites: acromion, shoulder_blade
+ * (clavicle_*); radiale (upperarm_*, where the acromion-radiale length
+ * ends; forearm_*, where the radiale-stylion length starts), stylion
+ * (forearm_*); dactylion, thumbtip (hand_*); trochanterion,
+ * lateral_femoral_epicondyle, midpatella, suprapatella, knee_front,
+ * popliteal (thigh_*); tibiale, lateral_malleolus (shank_*); pternion
+ * (foot_*); acropodion (toes_*); iliocristale_l/_r, ischial_tuberosity_l/_r,
+ * buttock_l/_r (pelvis); tragion_l/_r, ectocanthus_l/_r, sellion, cervicale
+ * (head); suprasternale (T1). Sites are numbered segment by segment, so
+ * these moved the indices of the sites after them: what is kept refers to
+ * sites by name (sessions, posture files, the journal), and
+ * human_site_before_landmarks reads an index of a figure built before.
  */
 struct model *human_build(const struct human_def *d, char *err, size_t errlen);
 
-/* as human_build, with the landmark sites also when no measure is given */
-struct model *human_build_landmarked(const struct human_def *d, char *err, size_t errlen);
+/*
+ * The site of m (a human) that had index `old` when the human was built
+ * without its landmark sites (sessions and journals written before every
+ * human carried them hold such indices); -1 when there is none.
+ */
+int human_site_before_landmarks(const struct model *m, int old);
 
 #endif

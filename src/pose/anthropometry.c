@@ -291,18 +291,3 @@ anthro_measure(const struct model *m, double dest[HUMAN_MEASURE_N], char *err, s
 	state_free(a.s);
 	return 0;
 }
-
-int
-anthro_measure_figure(const struct model *m, const struct human_def *d,
-		      double dest[HUMAN_MEASURE_N], char *err, size_t errlen)
-{
-	/* the built-in human without measures has no landmark sites (figure/human.h) */
-	if (!d || model_find_site(m, site_names[S_ACROMION_R]) >= 0)
-		return anthro_measure(m, dest, err, errlen);
-	struct model *twin = human_build_landmarked(d, err, errlen);
-	if (!twin)
-		return -1;
-	int r = anthro_measure(twin, dest, err, errlen);
-	model_free(twin);
-	return r;
-}

@@ -29,7 +29,6 @@
 
 #include <stddef.h>
 
-#include "figure/human.h"
 #include "figure/measures.h"
 #include "figure/model.h"
 
@@ -43,14 +42,5 @@ int anthro_find(const char *name);
  * joints of the built-in human, or out of memory.
  */
 int anthro_measure(const struct model *m, double dest[HUMAN_MEASURE_N], char *err, size_t errlen);
-
-/*
- * The same for a figure that may be the built-in human without measures,
- * whose figure carries no landmark sites (figure/human.h): with d its
- * definition, m is measured on a build of d with them (the same body, bit
- * for bit; sites moved on m since are not seen). NULL d: anthro_measure.
- */
-int anthro_measure_figure(const struct model *m, const struct human_def *d,
-			  double dest[HUMAN_MEASURE_N], char *err, size_t errlen);
 
 #endif

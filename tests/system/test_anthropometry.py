@@ -69,10 +69,10 @@ def sites(*args):
 
 @pytest.mark.parametrize("sex", ["male", "female"])
 def test_landmark_offsets_are_the_datas(sex):
-    """Today's figure carries its landmarks at the offsets the script derives from ANSUR II
-    (the C tables hold them to 4 decimals of stature)."""
+    """Today's figure (no measures) carries its landmarks at the offsets the script derives
+    from ANSUR II (the C tables hold them to 4 decimals of stature)."""
     want = script_output()[sex]
-    s = sites("--human", "--landmarks", "--sex", sex)
+    s = sites("--human", "--sex", sex)
     h = s["head.vertex"][1]
 
     def x(site):
@@ -129,8 +129,9 @@ def test_measures_not_given_take_the_datas_ratios(sex):
 
 def test_get_anthropometry_measures_without_moving_the_figure(daemon, tmp_path):  # noqa: F811
     """The daemon's measures are posture-figure's for the same figure, the figure's posture
-    and the posture hash do not change, and a figure built from measures (written by
-    posture-figure, loaded as a figure file) gives its measures back."""
+    and the posture hash do not change, a figure built from measures (written by
+    posture-figure, loaded as a figure file) gives its measures back, and a landmark moved on
+    its segment is measured where it is."""
     subject = subjects("female")[100]
     fig = run_tool(*measure_args("female", subject), "write")
     (daemon.state_dir / "jane.fig").write_text(fig)
@@ -156,6 +157,14 @@ def test_get_anthropometry_measures_without_moving_the_figure(daemon, tmp_path):
         assert reply["error"]["code"] == "bad-argument" and "landmarks" in reply["error"]["message"]
         assert c.request_reply("get anthropometry nobody")["error"]["code"] == "not-found"
         assert c.request("get anthropometry jack")["measures"]["stature"] == pytest.approx(1750)
+        # the figure's own landmarks are measured: the acromion moved up 10 mm on its segment
+        s = sites("--human")
+        local = [a - o for a, o in zip(s["clavicle_r.acromion"], s["clavicle_r.origin"])]
+        c.request("set site jack clavicle_r.acromion %r %r %r" % (local[0], local[1] + 0.01,
+                                                                   local[2]))
+        got = c.request("get anthropometry jack")["measures"]
+        assert got["acromialheight"] == pytest.approx(want["acromialheight"] + 10, abs=1e-9)
+        assert got["stature"] == pytest.approx(want["stature"], abs=1e-9)
 
 
 def test_posture_figure_refuses_what_no_body_meets(tmp_path):
