@@ -19,6 +19,7 @@
 #include "interact/prompt.h"
 #include "interact/pick.h"
 #include "pose/env.h"
+#include "daemon/populations.h"
 
 struct kms_times_summary; /* draw/kms_pick.h */
 
@@ -99,6 +100,7 @@ enum sub_kind {
 
 struct daemon {
 	struct env env;
+	struct populations pops; /* the populations loaded (load population), besides ansur2 */
 	char state_dir[4096];
 	char library_dir[4096]; /* shipped figure files, named "lib:NAME"; empty: none */
 	int files_read_only;    /* a replay: its state directory is the recording, read only */

@@ -790,6 +790,7 @@ loop_teardown(struct loop *L)
 	server_close(&L->srv);
 	journal_close(&L->j);
 	env_clear(&L->d.env);
+	populations_clear(&L->d.pops);
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
 	daemon_picks_free(&L->d);

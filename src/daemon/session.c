@@ -10,6 +10,7 @@
 #include "pose/behave.h"
 #include "figure/figure.h"
 #include "figure/kin.h"
+#include "daemon/manikin.h"
 #include "daemon/words.h"
 
 static const char *const pos_names[] = { "none", "point", "line", "plane" };
@@ -102,11 +103,13 @@ session_write(const struct env *e, FILE *f)
 		const struct env_figure *fg = &e->fig[i];
 		if (!fg->gen)
 			continue;
-		if (fg->is_human)
-			fprintf(f, "figure %s slot=%d gen=%u human stature=%.17g mass=%.17g sex=%s\n",
+		if (fg->is_human) {
+			fprintf(f, "figure %s slot=%d gen=%u human stature=%.17g mass=%.17g sex=%s",
 				fg->name, i, fg->gen, fg->human.stature, fg->human.mass,
 				fg->human.sex == HUMAN_FEMALE ? "female" : "male");
-		else
+			manikin_write_words(fg, f);
+			fprintf(f, "\n");
+		} else
 			fprintf(f, "figure %s slot=%d gen=%u file \"%s\"\n", fg->name, i, fg->gen,
 				fg->path);
 		write_figure_posture(fg, f);
@@ -279,6 +282,7 @@ read_figure(struct reader *r, struct env *e, const char *base_dir, const char *l
 	char err[300];
 	struct model *m = NULL;
 	struct human_def hd = human_default_def(HUMAN_MALE);
+	struct env_manikin mk = { .percentile = NAN, .coverage = NAN };
 	int human = !strcmp(w->w[4], "human");
 	const char *path = NULL;
 	if (human) {
@@ -289,6 +293,8 @@ read_figure(struct reader *r, struct env *e, const char *base_dir, const char *l
 		if (words_number(arg(w, 5, "stature") ? arg(w, 5, "stature") : "x", UNIT_LENGTH, &hd.stature) < 0 ||
 		    words_number(arg(w, 5, "mass") ? arg(w, 5, "mass") : "x", UNIT_NONE, &hd.mass) < 0)
 			return fail(r, "a human needs stature= and mass=");
+		if (manikin_read_words(w, 5, &hd, &mk, err, sizeof err) < 0)
+			return fail(r, "figure %s: %s", w->w[1], err);
 		m = human_build(&hd, err, sizeof err);
 	} else if (!strcmp(w->w[4], "file") && w->n == 6) {
 		path = w->w[5];
@@ -313,6 +319,8 @@ read_figure(struct reader *r, struct env *e, const char *base_dir, const char *l
 		memset(&e->fig[got], 0, sizeof e->fig[got]);
 	}
 	e->fig[slot].gen = (uint32_t)gen;
+	if (human)
+		e->fig[slot].manikin = mk;
 	e->next_gen = keep;
 	return 0;
 }
@@ -628,6 +636,19 @@ out:
 	return rc;
 }
 
+/* the height of a human's lowest foot point: the lowest site of its feet and toes */
+static double
+sole_height(const struct model *m, const struct state *s)
+{
+	double y = INFINITY;
+	for (int k = 0; k < m->nsite; k++) {
+		const char *seg = m->seg_name[m->site_seg[k]];
+		if (!strncmp(seg, "foot_", 5) || !strncmp(seg, "toes_", 5))
+			y = fmin(y, s->site_xf[k].p[1]);
+	}
+	return y;
+}
+
 int
 session_write_posture(const struct env *e, int fig, FILE *f)
 {
@@ -639,6 +660,8 @@ session_write_posture(const struct env *e, int fig, FILE *f)
 		model_site_fullname(m, s->root_site, site, sizeof site));
 	write_xform(f, &s->root_xf);
 	fprintf(f, "\n");
+	if (fg->is_human)
+		fprintf(f, "support %.17g\n", sole_height(m, s));
 	for (int j = 0; j < m->njnt; j++) {
 		if (!m->jnt_ndof[j])
 			continue;
@@ -660,6 +683,7 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 	double *q = malloc(sizeof *q * (size_t)(m->ndof + 1));
 	int rc = -1, got, root = -1;
 	struct xform root_xf;
+	double support = NAN;
 	if (!r || !q) {
 		snprintf(err, errlen, "out of memory");
 		goto out;
@@ -683,6 +707,11 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 			root = model_find_site(m, w->w[1]);
 			if (root < 0 || read_xform(w->w[2], &root_xf) < 0) {
 				fail(r, "no site %s on this figure, or a bad frame", w->w[1]);
+				goto out;
+			}
+		} else if (!strcmp(w->w[0], "support") && w->n == 2) {
+			if (words_number(w->w[1], UNIT_NONE, &support) < 0) {
+				fail(r, "support: a height");
 				goto out;
 			}
 		} else if (!strcmp(w->w[0], "joint") && w->n >= 2) {
@@ -717,6 +746,14 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 	if (root >= 0)
 		state_root_at(m, fg->state, root, &root_xf);
 	kin_update(m, fg->state);
+	/* a human of another size: its feet as high as the file's were (it stands where that one stood) */
+	double shift = fg->is_human && !isnan(support) ? support - sole_height(m, fg->state) : 0;
+	if (fabs(shift) > 1e-9) {
+		struct xform at = fg->state->root_xf;
+		at.p[1] += shift;
+		state_root_at(m, fg->state, fg->state->root_site, &at);
+		kin_update(m, fg->state);
+	}
 	rc = 0;
 out:
 	free(r);

@@ -2,6 +2,7 @@
 #include "pose/env.h"
 
 #include <stdio.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -91,6 +92,7 @@ env_add_figure(struct env *e, struct model *model, const char *name, int is_huma
 	if (human)
 		f->human = *human;
 	snprintf(f->path, sizeof f->path, "%s", path ? path : "");
+	f->manikin = (struct env_manikin){ .percentile = NAN, .coverage = NAN };
 	return slot;
 }
 
