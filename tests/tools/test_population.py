@@ -90,11 +90,12 @@ def predictions(sex, given):
     return {name: rows[:, j] for j, name in enumerate(head)}
 
 
-def regression_rms(d, given, target):
-    """RMS residual of numpy's least-squares fit of target on the given measures (with intercept)"""
+def regression(d, given, target):
+    """numpy's least-squares fit of target on the given measures (with intercept): the
+    fitted values for every subject"""
     X = np.column_stack([np.ones(len(d[target]))] + [d[g] for g in given])
     coef, *_ = np.linalg.lstsq(X, d[target], rcond=None)
-    return np.sqrt(np.mean((X @ coef - d[target]) ** 2))
+    return X @ coef
 
 
 def rms_table(given):
@@ -106,8 +107,11 @@ def rms_table(given):
         for m in MEASURES:
             if m in given:
                 continue
+            fitted = regression(d, given, m)
+            # on its own data the population's conditional expectation is that regression
+            assert np.allclose(pred[m], fitted, rtol=1e-9, atol=1e-7), (sex, m)
             ours = np.sqrt(np.mean((pred[m] - d[m]) ** 2))
-            ref = regression_rms(d, given, m)
+            ref = np.sqrt(np.mean((fitted - d[m]) ** 2))
             out.append((sex, m, ours, ref))
     return out
 
