@@ -25,7 +25,7 @@ SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-re
 BUILD   ?= build
 VENV    := .venv
 PY      := $(VENV)/bin/python
-# Debian packages the build, tests and benchmarks need (see README: Dependencies)
+# Debian packages the build, tests and benchmarks need (see docs/dependencies.md)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
 	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils \
 	libxkbcommon-dev xkb-data libx11-data libdrm-dev
@@ -273,7 +273,7 @@ $(PEER_BENCH): $(BUILD)/rel/bench/%: tools/bench/%.cpp | deps
 # kernel_latency.py and kms_flip_bench.py run guest programs in the kernel tier's QEMU guest)
 BENCH_STANDALONE := $(BUILD)/rel/bench/ik_body $(BUILD)/rel/bench/behave_bench $(BUILD)/rel/bench/interact_bench \
 	$(BUILD)/rel/bench/pick_bench $(BUILD)/rel/bench/hemi_bench $(BUILD)/rel/bench/display_bench \
-	$(BUILD)/rel/bench/family_bench
+	$(BUILD)/rel/bench/family_bench $(BUILD)/rel/bench/anthro_bench
 
 bench: deps $(rel_BENCH) $(rel_TOOLS) $(rel_GUEST) $(PEER_BENCH)
 	@set -e; for b in $(BENCH_STANDALONE); do echo "== $$b"; $$b; done

@@ -450,6 +450,7 @@ can_map_parse(const char *text, size_t n, const char *name, struct can_map *dest
 	char line[CAN_MAP_MAX_LINE_CHARS + 1];
 	char buf[160];
 	int has_code[CAN_MAP_MAX_LINES];
+	int line_no[CAN_MAP_MAX_LINES]; /* each map line's line in the text */
 	size_t pos = 0;
 	int lineno = 0;
 	while (pos < n) {
@@ -498,7 +499,7 @@ can_map_parse(const char *text, size_t n, const char *name, struct can_map *dest
 			free(m);
 			return fail(err, errlen, name, lineno, msg);
 		}
-		m->n++;
+		line_no[m->n++] = lineno;
 	}
 	if (m->n == 0) {
 		free(m);
@@ -512,9 +513,11 @@ can_map_parse(const char *text, size_t n, const char *name, struct can_map *dest
 			continue;
 		if (!has_code[i]) {
 			if (BTN_TRIGGER_HAPPY1 + nbutton > BTN_TRIGGER_HAPPY40) {
+				int at = line_no[i];
 				free(m);
-				return fail(err, errlen, name, lineno,
-					    "more than 40 buttons without code=");
+				return fail(err, errlen, name, at,
+					    "more than 40 buttons without code= (the default codes are "
+					    "BTN_TRIGGER_HAPPY1..40): give this one a code=");
 			}
 			m->line[i].code = (uint16_t)(BTN_TRIGGER_HAPPY1 + nbutton);
 		}

@@ -38,7 +38,8 @@
  *                  the same id) decodes and the integer part of its physical value is one
  *                  of the V (at most 8)
  *   code=BTN_x|N   button only: the evdev code (a BTN_* name or a number); default
- *                  BTN_TRIGGER_HAPPY1 + the number of button lines before this one
+ *                  BTN_TRIGGER_HAPPY1 + the number of button lines before this one, the
+ *                  kernel's 40 codes for such buttons: a 41st button line needs code=
  *   dlc=N          the message's length in bytes (1..8), when it is longer than its fields
  *
  * Example:

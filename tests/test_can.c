@@ -500,6 +500,44 @@ test_bad_maps_refused_with_file_and_line(void **unused)
 	assert_non_null(strstr(err, "/nonexistent/x.map:"));
 }
 
+/* n button lines on 8 ids, a comment line first and an axis line last; the last button
+ * with code (when not NULL) */
+static size_t
+buttons_text(char *dest, size_t size, int n, const char *code)
+{
+	size_t k = (size_t)snprintf(dest, size, "# buttons\n");
+	for (int i = 0; i < n; i++)
+		k += (size_t)snprintf(dest + k, size - k, "button %03X %d.%d b%d%s%s\n", 0x100 + i / 8,
+				      0, i % 8, i, i == n - 1 && code ? " code=" : "",
+				      i == n - 1 && code ? code : "");
+	k += (size_t)snprintf(dest + k, size - k, "axis 1FF 0 tail\n");
+	return k;
+}
+
+static void
+test_default_button_codes_are_the_kernel_s_forty(void **unused)
+{
+	(void)unused;
+	static char text[64 * 48];
+	/* BTN_TRIGGER_HAPPY1..40 in order: the kernel's codes for buttons of this kind */
+	buttons_text(text, sizeof text, 40, NULL);
+	map_from(text, &map_a);
+	assert_int_equal(map_a.n, 41);
+	for (int i = 0; i < 40; i++)
+		assert_int_equal(map_a.line[i].code, BTN_TRIGGER_HAPPY1 + i);
+	assert_int_equal(map_a.line[39].code, BTN_TRIGGER_HAPPY40);
+	assert_int_equal(BTN_TRIGGER_HAPPY40, 0x2e7);
+	/* a 41st without code= has none left: refused on its own line (the comment is line 1) */
+	buttons_text(text, sizeof text, 41, NULL);
+	refused(text, 42, "more than 40 buttons without code=");
+	/* with a code of its own it loads */
+	buttons_text(text, sizeof text, 41, "BTN_0");
+	map_from(text, &map_a);
+	assert_int_equal(map_a.n, 42);
+	assert_int_equal(map_a.line[40].code, BTN_0);
+	assert_int_equal(map_a.line[39].code, BTN_TRIGGER_HAPPY40);
+}
+
 static void
 map_equal(const struct can_map *a, const struct can_map *b)
 {
@@ -779,6 +817,7 @@ main(void)
 		cmocka_unit_test(test_stale_once_and_buttons_on_change),
 		cmocka_unit_test(test_no_allocation_per_frame),
 		cmocka_unit_test(test_bad_maps_refused_with_file_and_line),
+		cmocka_unit_test(test_default_button_codes_are_the_kernel_s_forty),
 		cmocka_unit_test(test_map_written_and_read_back_is_the_same),
 		cmocka_unit_test(test_candump_read_and_written_as_candump_writes),
 		cmocka_unit_test(test_candump_python_can_log_read_and_written_byte_for_byte),

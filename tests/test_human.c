@@ -163,7 +163,8 @@ test_mass_limits_extent(void **unused)
 {
 	(void)unused;
 	struct human_def defs[4] = { human_default_def(HUMAN_MALE), human_default_def(HUMAN_FEMALE),
-				     { 1.5, 50, HUMAN_FEMALE }, { 1.95, 110, HUMAN_MALE } };
+				     { .stature = 1.5, .mass = 50, .sex = HUMAN_FEMALE },
+				     { .stature = 1.95, .mass = 110, .sex = HUMAN_MALE } };
 	for (int f = 0; f < 4; f++) {
 		struct model *m = build(defs[f].stature, defs[f].mass, defs[f].sex);
 		struct state *s = state_make(m);
@@ -477,10 +478,16 @@ static void
 test_bad_inputs(void **unused)
 {
 	(void)unused;
-	struct human_def bad[] = { { 0, 75, HUMAN_MALE },     { NAN, 75, HUMAN_MALE },
-				   { 3, 75, HUMAN_MALE },     { 0.99, 75, HUMAN_MALE },
-				   { 1.75, -1, HUMAN_MALE },  { 1.75, NAN, HUMAN_FEMALE },
-				   { 1.75, 301, HUMAN_MALE }, { 1.75, 75, (enum human_sex)7 } };
+	struct human_def bad[] = {
+		{ .stature = 0, .mass = 75, .sex = HUMAN_MALE },
+		{ .stature = NAN, .mass = 75, .sex = HUMAN_MALE },
+		{ .stature = 3, .mass = 75, .sex = HUMAN_MALE },
+		{ .stature = 0.99, .mass = 75, .sex = HUMAN_MALE },
+		{ .stature = 1.75, .mass = -1, .sex = HUMAN_MALE },
+		{ .stature = 1.75, .mass = NAN, .sex = HUMAN_FEMALE },
+		{ .stature = 1.75, .mass = 301, .sex = HUMAN_MALE },
+		{ .stature = 1.75, .mass = 75, .sex = (enum human_sex)7 },
+	};
 	for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
 		char err[256] = "";
 		assert_null(human_build(&bad[i], err, sizeof err));
@@ -490,16 +497,16 @@ test_bad_inputs(void **unused)
 	struct human_def d = { .stature = 3, .mass = 75, .sex = HUMAN_MALE };
 	assert_null(human_build(&d, err, sizeof err));
 	assert_non_null(strstr(err, "stature"));
-	d = (struct human_def){ 1.75, -1, HUMAN_MALE };
+	d = (struct human_def){ .stature = 1.75, .mass = -1, .sex = HUMAN_MALE };
 	assert_null(human_build(&d, err, sizeof err));
 	assert_non_null(strstr(err, "mass"));
 	assert_null(human_build(NULL, err, sizeof err));
 	/* the bounds themselves are allowed */
-	d = (struct human_def){ 1.0, 20, HUMAN_FEMALE };
+	d = (struct human_def){ .stature = 1.0, .mass = 20, .sex = HUMAN_FEMALE };
 	struct model *m = human_build(&d, err, sizeof err);
 	assert_non_null(m);
 	model_free(m);
-	d = (struct human_def){ 2.5, 300, HUMAN_MALE };
+	d = (struct human_def){ .stature = 2.5, .mass = 300, .sex = HUMAN_MALE };
 	m = human_build(&d, err, sizeof err);
 	assert_non_null(m);
 	model_free(m);

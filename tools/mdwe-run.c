@@ -3,7 +3,7 @@
  * MemoryDenyWriteExecute=yes installs (systemd 252, seccomp-util.c): mmap
  * with PROT_WRITE and PROT_EXEC together, and mprotect or pkey_mprotect with
  * PROT_EXEC, fail with EPERM. It measures what the unit would do to a daemon
- * without systemd running (README: The Debian package and the service).
+ * without systemd running (docs/service.md).
  *
  *     mdwe-run PROGRAM [ARGS...]
  */

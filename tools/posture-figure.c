@@ -17,6 +17,7 @@
 #include "export/gltf.h"
 #include "export/seg_mesh.h"
 #include "export/urdf.h"
+#include "pose/anthropometry.h"
 
 static const char usage[] =
 	"usage: posture-figure [FIGURE OPTIONS] [POSTURE OPTIONS] COMMAND\n"
@@ -26,6 +27,10 @@ static const char usage[] =
 	"  --sex male|female     its sex (sets the default stature and mass)\n"
 	"  --stature METRES      its stature\n"
 	"  --mass KG             its body mass\n"
+	"  --measure NAME=VALUE  an ANSUR II measure the human must meet (mm; weightkg\n"
+	"                        in kg), e.g. sittingheight=918; repeatable\n"
+	"  --landmarks           the human with its anthropometric landmark sites even\n"
+	"                        without --measure (a figure from measures has them)\n"
 	"  --figure FILE         a figure file in the peabody language instead\n"
 	"posture (default: the figure's initial posture):\n"
 	"  --q-file FILE         postures, one a line: every dof value in order\n"
@@ -54,10 +59,12 @@ static const char usage[] =
 	"            animation, a keyframe every 0.5 s\n"
 	"  bvh       the figure's skeleton and the --q-file's postures as BVH motion\n"
 	"            frames, 0.5 s apart (without --q-file, the posture alone)\n"
-	"  write     the figure in the figure language\n";
+	"  write     the figure in the figure language\n"
+	"  measures  the human measured as ANSUR II measured people: NAME VALUE lines\n"
+	"            (mm; weightkg in kg)\n";
 
 struct options {
-	int human;
+	int human, landmarks;
 	struct human_def hdef;
 	const char *figure, *qfile, *root, *command, *out;
 	long seed;
@@ -79,10 +86,12 @@ parse_options(int argc, char **argv, struct options *o)
 	o->human = 1;
 	o->hdef = human_default_def(HUMAN_MALE);
 	int stature_set = 0, mass_set = 0;
-	double stature = 0, mass = 0;
+	double stature = 0, mass = 0, measure[HUMAN_MEASURE_N];
+	unsigned given = 0;
 	for (int i = 1; i < argc; i++) {
 		const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-		int takes = strcmp(a, "--human") && strncmp(a, "--help", 6) && a[0] == '-' && a[1];
+		int takes = strcmp(a, "--human") && strcmp(a, "--landmarks") && strncmp(a, "--help", 6) &&
+			    a[0] == '-' && a[1];
 		if (takes && !v) {
 			fprintf(stderr, "posture-figure: %s needs a value\n", a);
 			return -1;
@@ -92,6 +101,8 @@ parse_options(int argc, char **argv, struct options *o)
 			exit(0);
 		} else if (!strcmp(a, "--human")) {
 			o->human = 1;
+		} else if (!strcmp(a, "--landmarks")) {
+			o->landmarks = 1;
 		} else if (!strcmp(a, "--sex")) {
 			if (strcmp(v, "male") && strcmp(v, "female")) {
 				fprintf(stderr, "posture-figure: --sex is male or female\n");
@@ -108,6 +119,26 @@ parse_options(int argc, char **argv, struct options *o)
 			if (parse_double(v, &mass) < 0)
 				goto bad_number;
 			mass_set = 1;
+			i++;
+		} else if (!strcmp(a, "--measure")) {
+			const char *eq = strchr(v, '=');
+			char name[64];
+			int k = -1;
+			if (eq && (size_t)(eq - v) < sizeof name) {
+				memcpy(name, v, (size_t)(eq - v));
+				name[eq - v] = 0;
+				k = anthro_find(name);
+			}
+			if (k < 0) {
+				fprintf(stderr, "posture-figure: --measure takes NAME=VALUE with NAME one of");
+				for (int j = 0; j < HUMAN_MEASURE_N; j++)
+					fprintf(stderr, " %s", anthro_name((enum human_measure)j));
+				fprintf(stderr, " (got '%s')\n", v);
+				return -1;
+			}
+			if (parse_double(eq + 1, &measure[k]) < 0)
+				goto bad_number;
+			given |= 1u << k;
 			i++;
 		} else if (!strcmp(a, "--figure")) {
 			o->figure = v;
@@ -148,6 +179,20 @@ parse_options(int argc, char **argv, struct options *o)
 		o->hdef.stature = stature;
 	if (mass_set)
 		o->hdef.mass = mass;
+	/* a measured stature or weight is the figure's too */
+	for (int k = 0; k < HUMAN_MEASURE_N; k++)
+		if (given >> k & 1u)
+			o->hdef.measure[k] = measure[k];
+	o->hdef.measure_given = given;
+	if ((given >> HUMAN_M_STATURE & 1u) && !stature_set)
+		o->hdef.stature = measure[HUMAN_M_STATURE] / 1000;
+	if ((given >> HUMAN_M_WEIGHTKG & 1u) && !mass_set)
+		o->hdef.mass = measure[HUMAN_M_WEIGHTKG];
+	if ((given || o->landmarks) && !o->human) {
+		fprintf(stderr, "posture-figure: --measure and --landmarks are for the built-in human, "
+			"not --figure\n");
+		return -1;
+	}
 	if (!o->command) {
 		fprintf(stderr, "posture-figure: no command\n%s", usage);
 		return -1;
@@ -280,6 +325,21 @@ write_urdf(const struct model *m, const struct state *s, const char *out)
 		return 1;
 	}
 	fprintf(stderr, "posture-figure: %s and %d mesh files written\n", out, n - 1);
+	return 0;
+}
+
+/* the figure measured in ANSUR II's postures, whatever the posture options; 0 or 1 (said) */
+static int
+print_measures(const struct model *m, const struct human_def *human)
+{
+	double v[HUMAN_MEASURE_N];
+	char err[256];
+	if (anthro_measure_figure(m, human, v, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-figure: %s\n", err);
+		return 1;
+	}
+	for (int k = 0; k < HUMAN_MEASURE_N; k++)
+		printf("%s %.17g\n", anthro_name((enum human_measure)k), v[k]);
 	return 0;
 }
 
@@ -492,8 +552,9 @@ main(int argc, char **argv)
 	if (parse_options(argc, argv, &o) < 0)
 		return 2;
 	char err[512] = "";
-	struct model *m = o.human ? human_build(&o.hdef, err, sizeof err)
-				  : figure_read_file(o.figure, err, sizeof err);
+	struct model *m = !o.human      ? figure_read_file(o.figure, err, sizeof err)
+			  : o.landmarks ? human_build_landmarked(&o.hdef, err, sizeof err)
+					: human_build(&o.hdef, err, sizeof err);
 	if (!m) {
 		fprintf(stderr, "posture-figure: %s\n", err);
 		return 1;
@@ -518,6 +579,10 @@ main(int argc, char **argv)
 		kin_update(m, s);
 	}
 	/* the commands that take every posture at once */
+	if (!strcmp(o.command, "measures")) {
+		rc = print_measures(m, o.human ? &o.hdef : NULL);
+		goto out;
+	}
 	if (!strcmp(o.command, "gltf") || !strcmp(o.command, "bvh")) {
 		rc = write_motion(m, s, o.command, o.qfile, o.out);
 		goto out;

@@ -120,7 +120,7 @@ names_figure(const struct env *e, const char *word, int fig)
 }
 
 /*
- * The busy rule (issue 14): while the kiosk is in a step (a drag under
+ * The busy rule: while the kiosk is in a step (a drag under
  * way), a client's change to the figure it moves is refused, with the
  * kiosk's mode named, and so is any change of the whole environment
  * (undo, redo, a session loaded); reads, events and other figures go on.
@@ -179,7 +179,7 @@ dump_reply(int ok, const char *tag, json_t *result, const char *code, const char
 	return s;
 }
 
-/* bytes a request may not hold (PROTOCOL.md Framing) */
+/* bytes a request may not hold (docs/protocol.md Framing) */
 static int
 has_control_bytes(const char *line, size_t len)
 {

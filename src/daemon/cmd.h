@@ -44,7 +44,7 @@ const char *cmd_entry_usage(int i);
 /* the usage of the command a line starts with (its verb, and object if it has one); NULL */
 const char *cmd_usage_of_line(const char *line);
 
-/* prints the markdown table of commands (for PROTOCOL.md) */
+/* prints the markdown table of commands (for docs/protocol.md) */
 void cmd_print_table(FILE *f);
 
 #endif

@@ -65,7 +65,7 @@ struct daemon_stats {
 };
 
 /*
- * A kiosk action as one undoable step (issue 14): from the first button
+ * A kiosk action as one undoable step: from the first button
  * down in a mode to the last one up (or a typed value, a snap), the state
  * before it is kept; at its end that state becomes one undo checkpoint.
  * The journal marks both ends, so a crash mid-step comes back to the

@@ -1,5 +1,5 @@
 /*
- * dials.h - the dial panel at work (issue 14): its bindings
+ * dials.h - the dial panel at work: its bindings
  * (interact/dial_bind.h, the file of --bindings, `bind` at run time) fed
  * every input event, and what they ask for applied: a DOF of the picked
  * joint (Jack's dial box) or of a named joint, a sweep or zoom of the

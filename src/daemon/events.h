@@ -1,5 +1,5 @@
 /*
- * events.h - the events clients subscribe to (PROTOCOL.md, Events):
+ * events.h - the events clients subscribe to (docs/protocol.md, Events):
  * postures that changed, the message line, the solver's telemetry of a
  * figure's frame, stability and its alerts, and the pictures' frames. Each
  * is one JSON line written into a buffer made once, so a frame's events

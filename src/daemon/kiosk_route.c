@@ -176,7 +176,7 @@ menu_chosen(struct modes *M, int cmd)
 }
 
 /*
- * The pop-up menu (issue 14): a mouse button pressed on the background
+ * The pop-up menu: a mouse button pressed on the background
  * (nothing under the pointer) with no mode, prompt or change view opens it
  * at the pointer; while open, the pointer, the buttons, the wheel and the
  * keys are its own. Returns 1 when the event was the menu's.

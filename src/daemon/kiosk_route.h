@@ -1,5 +1,5 @@
 /*
- * kiosk_route.h - where the kiosk's input goes first (issue 14): the
+ * kiosk_route.h - where the kiosk's input goes first: the
  * screen's pointer mapped into the view under it (a layout), then the
  * pop-up menu while it is open (or a button on the background opening
  * it), a command's prompt (ESC, a click picking its answer), the keyboard's

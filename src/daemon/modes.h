@@ -26,7 +26,7 @@
 #define MODES_VIEW_UNDO 8      /* automatic view changes remembered per view */
 #define MODES_EDGE_MARGIN 0.1  /* a dragged G this near the picture's edge: the view follows */
 
-/* a button held this long ends its drag (issue 14: never a mode stuck in a step) */
+/* a button held this long ends its drag (never a mode stuck in a step) */
 #define MODES_HELD_MAX_US (60ull * 1000000)
 
 /* the segments a figure may have for its own body to obstruct (more: all of it is left out) */

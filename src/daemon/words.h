@@ -1,5 +1,5 @@
 /*
- * words.h - one request line split into words (PROTOCOL.md "Words"), and
+ * words.h - one request line split into words (docs/protocol.md "Words"), and
  * the number and list readers the command handlers share.
  */
 #ifndef POSTURE_WORDS_H

@@ -1,5 +1,5 @@
 /*
- * tiles.h - the kiosk's screen (issue 14): one view filling it, or several
+ * tiles.h - the kiosk's screen: one view filling it, or several
  * tiled in a grid, above the band that holds the message and status lines.
  * Pure geometry in whole pixels: where each view goes on the screen, and
  * which view (and which pixel of it) a point of the screen falls in.

@@ -31,6 +31,8 @@
  *   Bekerman I, Gottlieb P, Vaiman M (2014) Variations in eyeball diameters
  *     of the healthy adults, J Ophthalmol 2014:503645: ~24 mm diameter; with
  *     a density near water that is the usual 7.5 g eyeball mass.
+ *   Anthropometric landmarks and the build from ANSUR II measures: their
+ *     sources are in human_dims.c.
  * Documented assumptions (no single published value): L5/S1 at the height
  *   of the ASIS; the ankle joint above a point 1/4 of the foot length in
  *   front of the heel; the MTP joints 0.73 of the foot length from the heel
@@ -355,6 +357,39 @@ build_limbs(struct hb *h, int s)
 #undef SITE
 }
 
+/* the anthropometric landmarks (human_dims.c placed them), after each segment's other sites */
+static void
+build_landmarks(struct hb *h)
+{
+	static const int limb[] = {
+		[HUMAN_LM_THIGH] = HUMAN_LIMB_THIGH,       [HUMAN_LM_SHANK] = HUMAN_LIMB_SHANK,
+		[HUMAN_LM_FOOT] = HUMAN_LIMB_FOOT,         [HUMAN_LM_TOES] = HUMAN_LIMB_TOES,
+		[HUMAN_LM_CLAVICLE] = HUMAN_LIMB_CLAVICLE, [HUMAN_LM_UPPERARM] = HUMAN_LIMB_UPPERARM,
+		[HUMAN_LM_FOREARM] = HUMAN_LIMB_FOREARM,   [HUMAN_LM_HAND] = HUMAN_LIMB_HAND,
+	};
+	for (int i = 0; i < HUMAN_LM_N; i++) {
+		const struct human_landmark_info *lm = &human_landmark_info[i];
+		for (int s = 0; s < (lm->bilateral ? 2 : 1); s++) {
+			int seg;
+			char name[MODEL_NAME_MAX];
+			if (lm->seg == HUMAN_LM_PELVIS)
+				seg = HUMAN_SEG_PELVIS;
+			else if (lm->seg == HUMAN_LM_T1)
+				seg = HUMAN_SEG_SLICE0 + HUMAN_NSLICE - 1;
+			else if (lm->seg == HUMAN_LM_HEAD)
+				seg = HUMAN_SEG_HEAD;
+			else
+				seg = HUMAN_SEG_LIMB + HUMAN_LIMB_N * s + limb[lm->seg];
+			/* a limb segment is one side's: its sites need no suffix */
+			int suffix = lm->bilateral && lm->seg < HUMAN_LM_THIGH;
+			snprintf(name, sizeof name, "%s%s", lm->name, suffix ? human_side_sfx[s] : "");
+			double p[3];
+			side_pt(h->L->lm[i], s, p);
+			add_site(h, seg, name, p);
+		}
+	}
+}
+
 /* adds joint `name` from site `from` (segment.site) to segment `to_seg`'s origin */
 static void
 add_joint(struct hb *h, const char *name, const char *from_seg, const char *from_site,
@@ -474,8 +509,8 @@ reject_msg(char *err, size_t errlen, const char *msg)
 	return NULL;
 }
 
-struct model *
-human_build(const struct human_def *d, char *err, size_t errlen)
+static struct model *
+build(const struct human_def *d, int landmarks, char *err, size_t errlen)
 {
 	if (!d)
 		return reject_msg(err, errlen, "human: no definition");
@@ -492,7 +527,10 @@ human_build(const struct human_def *d, char *err, size_t errlen)
 	if (!L)
 		return reject_msg(err, errlen, "human: out of memory");
 	*L = L_zero;
-	human_layout_make(d, L);
+	if (human_layout_make(d, L, err, errlen) < 0) {
+		free(L);
+		return NULL;
+	}
 	struct hb h = { model_builder_create(d->sex == HUMAN_FEMALE ? "human_female" : "human_male"),
 			L, { 0 }, 0 };
 	if (!h.b) {
@@ -507,6 +545,8 @@ human_build(const struct human_def *d, char *err, size_t errlen)
 	build_head(&h);
 	build_limbs(&h, 0);
 	build_limbs(&h, 1);
+	if (landmarks)
+		build_landmarks(&h);
 	build_joints(&h);
 	double com[3];
 	human_layout_com(L, com);
@@ -525,4 +565,16 @@ human_build(const struct human_def *d, char *err, size_t errlen)
 	model_builder_free(h.b);
 	free(L);
 	return m;
+}
+
+struct model *
+human_build(const struct human_def *d, char *err, size_t errlen)
+{
+	return build(d, d && d->measure_given, err, errlen);
+}
+
+struct model *
+human_build_landmarked(const struct human_def *d, char *err, size_t errlen)
+{
+	return build(d, 1, err, errlen);
 }

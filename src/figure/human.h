@@ -114,8 +114,27 @@ struct human_def human_default_def(enum human_sex sex);
 /*
  * Builds the figure standing on the floor (y = 0), facing +z, x to its left.
  * Returns NULL with a message in err for a stature outside [1.0, 2.5] m, a
- * mass outside [20, 300] kg, an unknown sex, or when out of memory.
+ * mass outside [20, 300] kg, an unknown sex, given measures no body can
+ * meet (the message names them), or when out of memory.
+ *
+ * With measures given (measure_given != 0) the figure meets them as
+ * pose/anthropometry.h measures it, within 2 mm and its mass exactly
+ * (figure/human_dims.c says how, and what the measures not given become),
+ * and it carries the surface landmarks anthropometry measures as sites:
+ * acromion, shoulder_blade (clavicle_*); radiale (upperarm_*, where the
+ * acromion-radiale length ends; forearm_*, where the radiale-stylion length
+ * starts), stylion (forearm_*); dactylion, thumbtip (hand_*);
+ * trochanterion, lateral_femoral_epicondyle, midpatella, suprapatella,
+ * knee_front, popliteal (thigh_*); tibiale, lateral_malleolus (shank_*);
+ * pternion (foot_*); acropodion (toes_*); iliocristale_l/_r,
+ * ischial_tuberosity_l/_r, buttock_l/_r (pelvis); tragion_l/_r,
+ * ectocanthus_l/_r, sellion, cervicale (head); suprasternale (T1). Without
+ * measures it is today's figure, bit for bit and site for site: its site
+ * indices, which posture hashes and recordings hold, stay as they were.
  */
 struct model *human_build(const struct human_def *d, char *err, size_t errlen);
+
+/* as human_build, with the landmark sites also when no measure is given */
+struct model *human_build_landmarked(const struct human_def *d, char *err, size_t errlen);
 
 #endif

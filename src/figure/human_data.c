@@ -16,6 +16,12 @@ const char *const human_limb_name[HUMAN_LIMB_N] = { "thigh",    "shank",    "foo
 						    "forearm",  "hand" };
 const char *const human_side_sfx[2] = { "_l", "_r" };
 
+const struct human_landmark_info human_landmark_info[HUMAN_LM_N] = {
+#define HUMAN_LM_INFO(e, name, seg, bilateral) { name, seg, bilateral },
+	HUMAN_LANDMARKS(HUMAN_LM_INFO)
+#undef HUMAN_LM_INFO
+};
+
 /*
  * de Leva P (1996) Adjustments to Zatsiorsky-Seluyanov's segment inertia
  * parameters. J Biomech 29(9):1223-1230, Table 4. Reference subjects: men
@@ -194,6 +200,13 @@ dl_mass(const struct human_layout *L, int s)
 	return L->dl->seg[s].mass * L->norm * L->M;
 }
 
+/* C7/T1: one de Leva head length below the vertex, whatever the measures */
+static double
+c7_height(const struct human_layout *L)
+{
+	return L->H - L->dl->seg[HUMAN_DL_HEAD].len * L->k;
+}
+
 /*
  * Torso outline: half-width and half-depth (fractions of stature) against
  * height. Hip breadth 0.191 H and chest breadth 0.174 H from Drillis &
@@ -209,7 +222,8 @@ human_torso_semi(const struct human_layout *L, double y, double *hw, double *hd)
 		{ 0.835, 0.072, 0.050 }, { 0.870, 0.040, 0.040 },
 	};
 	int n = (int)(sizeof tab / sizeof tab[0]);
-	double f = y / L->H;
+	/* the outline is today's figure's: a moved trunk looks it up where today's is */
+	double f = (L->dim.measured ? human_trunk_unmap(&L->dim, c7_height(L), y) : y) / L->H;
 	int i = 0;
 	while (i < n - 2 && f > tab[i + 1][0])
 		i++;
@@ -333,26 +347,25 @@ dl_inertia(const struct human_dl_row *row, double m, double len, int sag_axis, i
 	inertia_rotated(d, R ? R : id, dest);
 }
 
-/* joint centres and landmarks for ankle offset za */
+/* joint centres for ankle offset za */
 static void
 lay_points(struct human_layout *L, double za)
 {
+	const struct human_dims *D = &L->dim;
 	double H = L->H, k = L->k;
 	const struct human_dl_row *dl = L->dl->seg;
 	L->za = za;
-	/* legs: Drillis & Contini heights, Hara et al. hip joint centres */
-	double ll = (human_dc_hip - human_dc_ankle) * H + 0.009;
-	ll /= 1 - 0.078;
-	double hx = 0.008 + 0.086 * ll, y_asis = human_dc_hip * H + 0.009 + 0.078 * ll;
-	vset(L->hip, hx, human_dc_hip * H, 0);
-	vset(L->knee, hx, human_dc_knee * H, 0);
-	vset(L->ankle, hx, human_dc_ankle * H, za);
-	double lf = human_dc_foot_length * H, heel_z = za - 0.25 * lf;
+	/* legs: Drillis & Contini heights, Hara et al. hip joint centres (human_dims.c) */
+	double hx = D->hx, y_asis = D->y_asis;
+	vset(L->hip, hx, D->y_hip, 0);
+	vset(L->knee, hx, D->y_knee, 0);
+	vset(L->ankle, hx, D->y_ankle, za);
+	double lf = D->lf, heel_z = za - 0.25 * lf;
 	vset(L->heel, hx, 0, heel_z);
 	vset(L->mtp, hx, 0.011 * H, heel_z + 0.73 * lf);
 	vset(L->tip, hx, 0, heel_z + lf);
 	vset(L->balance, hx, 0, za + HUMAN_BALANCE_AHEAD * H);
-	double fw = human_dc_foot_width * H;
+	double fw = D->fw;
 	vset(L->foot_box[0], hx - fw / 2, 0, heel_z);
 	vset(L->foot_box[1], hx + fw / 2, L->ankle[1] + 0.010 * H, L->mtp[2]);
 	vset(L->toes_box[0], hx - 0.45 * fw, 0, L->mtp[2] - 0.004 * H);
@@ -374,16 +387,21 @@ lay_points(struct human_layout *L, double za)
 	}
 	L->y_supr = human_dc_hip * H + (dl[HUMAN_DL_LPT].len + dl[HUMAN_DL_MPT].len +
 					dl[HUMAN_DL_UPT].len) * k;
+	if (D->measured) {
+		for (int i = 0; i < HUMAN_NSLICE; i++)
+			L->spine[i][1] = human_trunk_map(D, y17, L->spine[i][1]);
+		L->y_supr = human_trunk_map(D, y17, L->y_supr);
+	}
 
 	/* shoulder girdle and arm, hanging with the palms facing the thighs */
 	double hw, hd;
 	human_torso_semi(L, L->y_supr, &hw, &hd);
 	vset(L->sc, 0.012 * H, L->y_supr, hd - 0.010 * H);
-	double ax = human_dc_shoulder_half * H;
-	vset(L->gh, ax, human_dc_shoulder * H, 0);
-	vset(L->elbow, ax, human_dc_elbow * H, 0);
-	vset(L->wrist, ax, human_dc_wrist * H, 0);
-	vset(L->fingertip, ax, human_dc_fingertip * H, 0);
+	double ax = D->gh_x;
+	vset(L->gh, ax, D->gh_y, 0);
+	vset(L->elbow, ax, D->y_elbow, 0);
+	vset(L->wrist, ax, D->y_wrist, 0);
+	vset(L->fingertip, ax, D->y_tip, 0);
 
 	/* head: skull from chin to vertex, eyes at eye height */
 	vset(L->head_semi, 0.044 * H, (1 - human_dc_chin) * H / 2, 0.056 * H);
@@ -392,7 +410,7 @@ lay_points(struct human_layout *L, double za)
 	L->eye_r = 0.0069 * H;
 	double front = L->head_c[2] +
 		       L->head_semi[2] * sqrt(1 - (ex / L->head_semi[0]) * (ex / L->head_semi[0]));
-	vset(L->eye, ex, human_dc_eye * H, front - 0.4 * L->eye_r);
+	vset(L->eye, ex, D->y_eye, front - 0.4 * L->eye_r);
 }
 
 /* masses, centres of mass (layout frame) and inertia of every segment */
@@ -442,7 +460,7 @@ lay_masses(struct human_layout *L)
 	rod_frame(L->ankle, L->knee, R);
 	dl_inertia(&dl[HUMAN_DL_SHANK], m, len, 0, 2, 1, R, L->inertia[b + HUMAN_LIMB_SHANK]);
 	/* foot + toes: de Leva's foot, split by box volume; CoM at half ankle height */
-	double mf = dl_mass(L, HUMAN_DL_FOOT), lf = human_dc_foot_length * H, vol[2];
+	double mf = dl_mass(L, HUMAN_DL_FOOT), lf = L->dim.lf, vol[2];
 	for (int i = 0; i < 2; i++) {
 		const double(*bx)[3] = i ? L->toes_box : L->foot_box;
 		vol[i] = (bx[1][0] - bx[0][0]) * (bx[1][1] - bx[0][1]) * (bx[1][2] - bx[0][2]);
@@ -483,7 +501,7 @@ lay_masses(struct human_layout *L)
 	vset(L->com[b + HUMAN_LIMB_FOREARM], L->gh[0], L->elbow[1] - dl[HUMAN_DL_FOREARM].com * len, 0);
 	dl_inertia(&dl[HUMAN_DL_FOREARM], m, len, 2, 0, 1, id, L->inertia[b + HUMAN_LIMB_FOREARM]);
 	m = L->mass[b + HUMAN_LIMB_HAND] = dl_mass(L, HUMAN_DL_HAND);
-	len = dl[HUMAN_DL_HAND].len * k; /* wrist to third metacarpale */
+	len = L->dim.hand_len; /* wrist to third metacarpale */
 	vset(L->com[b + HUMAN_LIMB_HAND], L->gh[0], L->wrist[1] - dl[HUMAN_DL_HAND].com * len, 0);
 	dl_inertia(&dl[HUMAN_DL_HAND], m, len, 2, 0, 1, id, L->inertia[b + HUMAN_LIMB_HAND]);
 	for (int l = 0; l < HUMAN_LIMB_N; l++) {
@@ -562,13 +580,125 @@ human_layout_com(const struct human_layout *L, double dest[3])
 		dest[r] = sum[r] / mt;
 }
 
+#define within human_dims_within
+
+/* today's figure: the stature fractions (human.c's sources) */
+static void
+dims_default(struct human_layout *L)
+{
+	struct human_dims *D = &L->dim;
+	const struct human_lm_fractions *F = human_lm_fractions(L->dl == &human_dl_female);
+	double H = L->H, k = L->k;
+	memset(D, 0, sizeof *D);
+	/* Hara et al.: the hip joint centres from the leg length ASIS to malleolus */
+	double ll = (human_dc_hip - human_dc_ankle) * H + 0.009;
+	ll /= 1 - 0.078;
+	D->hx = 0.008 + 0.086 * ll;
+	D->y_asis = human_dc_hip * H + 0.009 + 0.078 * ll;
+	D->y_ankle = human_dc_ankle * H;
+	D->y_knee = human_dc_knee * H;
+	D->y_hip = human_dc_hip * H;
+	D->lf = human_dc_foot_length * H;
+	D->fw = human_dc_foot_width * H;
+	D->hand_len = L->dl->seg[HUMAN_DL_HAND].len * k;
+	D->gh_x = human_dc_shoulder_half * H;
+	D->gh_y = human_dc_shoulder * H;
+	D->y_elbow = human_dc_elbow * H;
+	D->y_wrist = human_dc_wrist * H;
+	D->y_tip = human_dc_fingertip * H;
+	D->y_eye = human_dc_eye * H;
+	D->trunk_from = D->y_hip;
+	vset(D->acromion, D->gh_x + F->acromion_x * H, D->gh_y + F->acromion_y * H, 0);
+	D->radiale_upper_y = D->radiale_y = D->y_elbow;
+}
+
+/* places the landmarks on the laid-out figure; 0, or -1 with why in err */
+static int
+landmarks_place(struct human_layout *L, char *err, size_t errlen)
+{
+	const struct human_dims *D = &L->dim;
+	const struct human_lm_fractions *F = human_lm_fractions(L->dl == &human_dl_female);
+	double H = L->H, y_a = L->ankle[1];
+	/* seated, the shank hangs straight below the knee and the foot is flat */
+	double shank = hypot(L->knee[1] - L->ankle[1], L->knee[2] - L->ankle[2]);
+	/* what a measure given sets; the ANSUR mean where none is */
+#define M(L, x) ((L)->dim.v[HUMAN_M_##x])
+#define SET(x) (D->measured && !isnan(M(L, x)))
+	double seat = human_seat_depth(D, H, L->dl == &human_dl_female);
+	double supra = SET(KNEEHEIGHTSITTING) ? M(L, KNEEHEIGHTSITTING) - shank - y_a
+					      : F->suprapatella * H;
+	double popl = SET(POPLITEALHEIGHT) ? shank + y_a - M(L, POPLITEALHEIGHT) : F->popliteal * H;
+	double thigh = L->hip[1] - L->knee[1];
+	double butt = SET(BUTTOCKKNEELENGTH) ? M(L, BUTTOCKKNEELENGTH) - thigh - supra
+					     : F->buttock * H;
+	double sz = F->stylion_z * H, hand = hypot(L->wrist[1] - L->fingertip[1], sz);
+	double thumb_y = L->wrist[1] - HUMAN_LM_PINCH * hand;
+	double blade = SET(THUMBTIPREACH) ? M(L, THUMBTIPREACH) - (L->gh[1] - thumb_y)
+					  : F->shoulder_blade * H;
+	double troch = SET(HIPBREADTH) ? M(L, HIPBREADTH) / 2 : F->trochanterion_x * H;
+#undef SET
+#undef M
+	if (within(seat, HUMAN_LM_SEAT_LO, HUMAN_LM_SEAT_HI, H,
+		   "the seat below the hip joint centres",
+		   "sittingheight against stature and trochanterionheight", err, errlen) < 0 ||
+	    within(supra, HUMAN_LM_KNEE_DEPTH_LO, HUMAN_LM_SUPRAPATELLA_HI, H,
+		   "the top of the knee above its axis, seated",
+		   "kneeheightsitting against the leg's heights", err, errlen) < 0 ||
+	    within(popl, HUMAN_LM_KNEE_DEPTH_LO, HUMAN_LM_POPLITEAL_HI, H,
+		   "the popliteal below the knee's axis, seated",
+		   "poplitealheight against the leg's heights", err, errlen) < 0 ||
+	    within(butt, HUMAN_LM_BUTTOCK_LO, HUMAN_LM_BUTTOCK_HI, H,
+		   "the buttocks behind the hip joint centres",
+		   "buttockkneelength against the thigh and kneeheightsitting", err, errlen) < 0 ||
+	    within(blade, HUMAN_LM_BLADE_LO, HUMAN_LM_BLADE_HI, H,
+		   "the shoulder blades behind the shoulder joints", "thumbtipreach against the arm",
+		   err, errlen) < 0 ||
+	    within(troch - D->hx, 0.005, 0.15, H, "the trochanterion outside the hip joint centre",
+		   "hipbreadth", err, errlen) < 0)
+		return -1;
+
+	double(*lm)[3] = L->lm;
+	const double *gh = L->gh, *knee = L->knee, *hip = L->hip;
+	double hx = D->hx, top = c7_height(L), hw, hd;
+	vset(lm[HUMAN_LM_ACROMION], D->acromion[0], D->acromion[1], D->acromion[2]);
+	vset(lm[HUMAN_LM_SHOULDER_BLADE], gh[0] - 0.05 * H, gh[1] - 0.04 * H, gh[2] - blade);
+	vset(lm[HUMAN_LM_RADIALE_UPPER], gh[0] + HUMAN_LM_RADIALE_X * H, D->radiale_upper_y, 0);
+	vset(lm[HUMAN_LM_RADIALE], gh[0] + HUMAN_LM_RADIALE_X * H, D->radiale_y, 0);
+	vset(lm[HUMAN_LM_STYLION], gh[0], L->wrist[1], sz);
+	vset(lm[HUMAN_LM_DACTYLION], gh[0], L->fingertip[1], 0);
+	vset(lm[HUMAN_LM_THUMBTIP], gh[0], thumb_y, sz + HUMAN_LM_THUMB_Z * H);
+	vset(lm[HUMAN_LM_TROCHANTERION], troch, hip[1], 0);
+	vset(lm[HUMAN_LM_FEMORAL_EPICONDYLE], hx + HUMAN_LM_EPICONDYLE_X * H, knee[1], 0);
+	vset(lm[HUMAN_LM_MIDPATELLA], hx, knee[1] + F->midpatella_y * H, supra);
+	vset(lm[HUMAN_LM_SUPRAPATELLA], hx, knee[1] + HUMAN_LM_SUPRAPATELLA_Y * H, supra);
+	/* the knee's front when bent square: on the thigh's axis, as far from the knee's as its top */
+	vset(lm[HUMAN_LM_KNEE_FRONT], hx, knee[1] - supra, 0);
+	vset(lm[HUMAN_LM_POPLITEAL], hx, knee[1], -popl);
+	vset(lm[HUMAN_LM_TIBIALE], hx - HUMAN_LM_TIBIALE_X * H, knee[1] + F->tibiale_y * H, 0);
+	vset(lm[HUMAN_LM_LATERAL_MALLEOLUS], hx + F->malleolus_x * H, y_a, L->ankle[2]);
+	vset(lm[HUMAN_LM_PTERNION], hx, 0.02 * H, L->heel[2]);
+	vset(lm[HUMAN_LM_ACROPODION], hx, 0.008 * H, L->tip[2]);
+	vset(lm[HUMAN_LM_ILIOCRISTALE], F->iliocristale_x * H, hip[1] + F->iliocristale_y * H, 0);
+	vset(lm[HUMAN_LM_ISCHIAL_TUBEROSITY], 0.03 * H, hip[1] - seat, -0.03 * H);
+	vset(lm[HUMAN_LM_BUTTOCK], 0.045 * H, hip[1] - 0.03 * H, -butt);
+	vset(lm[HUMAN_LM_TRAGION], F->tragion_x * H, H - F->tragion_y * H, L->head_c[2] - 0.01 * H);
+	vset(lm[HUMAN_LM_ECTOCANTHUS], L->eye[0] + L->eye_r, L->eye[1], L->eye[2] - 0.5 * L->eye_r);
+	vset(lm[HUMAN_LM_SELLION], 0, L->eye[1], L->head_c[2] + L->head_semi[2]);
+	vset(lm[HUMAN_LM_CERVICALE], 0, top, L->spine[HUMAN_NSLICE][2] - 0.035 * H);
+	human_torso_semi(L, L->y_supr, &hw, &hd);
+	vset(lm[HUMAN_LM_SUPRASTERNALE], 0, L->y_supr, hd);
+	return 0;
+}
+
+#undef within
+
 /*
  * Lays out the figure in its standing rest posture: the ankle offset za is
  * solved so that the centre of mass lies above the balance references
  * (the centre of mass moves linearly with za: only the shanks and feet move).
  */
-void
-human_layout_make(const struct human_def *d, struct human_layout *L)
+int
+human_layout_make(const struct human_def *d, struct human_layout *L, char *err, size_t errlen)
 {
 	L->H = d->stature;
 	L->M = d->mass;
@@ -578,6 +708,13 @@ human_layout_make(const struct human_def *d, struct human_layout *L)
 	for (int s = 0; s < HUMAN_DL_N; s++)
 		sum += L->dl->seg[s].mass * (s >= HUMAN_DL_UPPERARM ? 2 : 1);
 	L->norm = 1 / sum;
+	dims_default(L);
+	if (d->measure_given) {
+		struct human_dims_in in = { d->stature, d->mass, d->sex == HUMAN_FEMALE, d->measure,
+					    d->measure_given, c7_height(L) };
+		if (human_dims_measured(&in, &L->dim, err, errlen) < 0)
+			return -1;
+	}
 	double c0[3], c1[3], dz = -0.05;
 	lay_points(L, 0);
 	lay_masses(L);
@@ -588,5 +725,5 @@ human_layout_make(const struct human_def *d, struct human_layout *L)
 	double slope = (c1[2] - c0[2]) / dz, ahead = HUMAN_BALANCE_AHEAD * L->H;
 	lay_points(L, (c0[2] - ahead) / (1 - slope));
 	lay_masses(L);
+	return landmarks_place(L, err, errlen);
 }
-

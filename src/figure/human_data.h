@@ -8,6 +8,7 @@
 #define POSTURE_HUMAN_DATA_H
 
 #include "figure/human.h"
+#include "figure/human_dims.h"
 
 /* de Leva (1996) segments used here (Table 4 rows) */
 enum human_dl_seg {
@@ -129,6 +130,70 @@ extern const char *const human_side_sfx[2];
 #define HUMAN_SLICE_CHEST 12      /* T5 carries the chest site */
 
 /*
+ * The surface landmarks anthropometry measures, as sites (human_dims.c
+ * places them): X(ID, site name, segment, bilateral). A bilateral landmark
+ * on a limb segment has one site per side with the plain name
+ * ("thigh_l.trochanterion"); one on the pelvis or the head gets the side's
+ * suffix ("pelvis.iliocristale_l"). The radiale has two sites: where the
+ * acromion-radiale length ends (on the upper arm) and where the
+ * radiale-stylion length starts (on the forearm); they coincide unless the
+ * given measures disagree (human_dims.c).
+ */
+#define HUMAN_LANDMARKS(X)                                               \
+	X(ACROMION, "acromion", HUMAN_LM_CLAVICLE, 1)                    \
+	X(SHOULDER_BLADE, "shoulder_blade", HUMAN_LM_CLAVICLE, 1)        \
+	X(RADIALE_UPPER, "radiale", HUMAN_LM_UPPERARM, 1)                \
+	X(RADIALE, "radiale", HUMAN_LM_FOREARM, 1)                       \
+	X(STYLION, "stylion", HUMAN_LM_FOREARM, 1)                       \
+	X(DACTYLION, "dactylion", HUMAN_LM_HAND, 1)                      \
+	X(THUMBTIP, "thumbtip", HUMAN_LM_HAND, 1)                        \
+	X(TROCHANTERION, "trochanterion", HUMAN_LM_THIGH, 1)             \
+	X(FEMORAL_EPICONDYLE, "lateral_femoral_epicondyle", HUMAN_LM_THIGH, 1) \
+	X(MIDPATELLA, "midpatella", HUMAN_LM_THIGH, 1)                   \
+	X(SUPRAPATELLA, "suprapatella", HUMAN_LM_THIGH, 1)               \
+	X(KNEE_FRONT, "knee_front", HUMAN_LM_THIGH, 1)                   \
+	X(POPLITEAL, "popliteal", HUMAN_LM_THIGH, 1)                     \
+	X(TIBIALE, "tibiale", HUMAN_LM_SHANK, 1)                         \
+	X(LATERAL_MALLEOLUS, "lateral_malleolus", HUMAN_LM_SHANK, 1)     \
+	X(PTERNION, "pternion", HUMAN_LM_FOOT, 1)                        \
+	X(ACROPODION, "acropodion", HUMAN_LM_TOES, 1)                    \
+	X(ILIOCRISTALE, "iliocristale", HUMAN_LM_PELVIS, 1)              \
+	X(ISCHIAL_TUBEROSITY, "ischial_tuberosity", HUMAN_LM_PELVIS, 1)  \
+	X(BUTTOCK, "buttock", HUMAN_LM_PELVIS, 1)                        \
+	X(TRAGION, "tragion", HUMAN_LM_HEAD, 1)                          \
+	X(ECTOCANTHUS, "ectocanthus", HUMAN_LM_HEAD, 1)                  \
+	X(SELLION, "sellion", HUMAN_LM_HEAD, 0)                          \
+	X(CERVICALE, "cervicale", HUMAN_LM_HEAD, 0)                      \
+	X(SUPRASTERNALE, "suprasternale", HUMAN_LM_T1, 0)
+
+/* the segment a landmark is on */
+enum human_lm_seg {
+	HUMAN_LM_PELVIS,
+	HUMAN_LM_T1,
+	HUMAN_LM_HEAD,
+	HUMAN_LM_THIGH, /* limb segments: the side's */
+	HUMAN_LM_SHANK,
+	HUMAN_LM_FOOT,
+	HUMAN_LM_TOES,
+	HUMAN_LM_CLAVICLE,
+	HUMAN_LM_UPPERARM,
+	HUMAN_LM_FOREARM,
+	HUMAN_LM_HAND,
+};
+
+#define HUMAN_LM_ENUM(e, name, seg, bilateral) HUMAN_LM_##e,
+enum human_landmark { HUMAN_LANDMARKS(HUMAN_LM_ENUM) HUMAN_LM_N };
+#undef HUMAN_LM_ENUM
+
+struct human_landmark_info {
+	const char *name;
+	enum human_lm_seg seg;
+	int bilateral;
+};
+
+extern const struct human_landmark_info human_landmark_info[HUMAN_LM_N];
+
+/*
  * The laid-out figure in its standing rest posture, in the layout frame (x
  * left, y up, z forward, the hip joint centres at z = 0). Landmark points
  * are the left side's; the right side is their mirror image. Per segment:
@@ -141,6 +206,8 @@ struct human_layout {
 	double k;      /* stature / de Leva reference stature */
 	double norm;   /* 1 / sum of de Leva mass fractions */
 	double za;     /* ankle z: the forward lean of the shanks */
+	struct human_dims dim;
+	double lm[HUMAN_LM_N][3]; /* landmarks, left side (human_landmarks_place) */
 	double hip[3], knee[3], ankle[3], heel[3], mtp[3], tip[3], balance[3];
 	double sc[3], gh[3], elbow[3], wrist[3], fingertip[3], eye[3];
 	double spine[HUMAN_NSLICE + 1][3]; /* spine_k centres; [17] is C7/T1 */
@@ -150,8 +217,14 @@ struct human_layout {
 	double org[HUMAN_SEG_N][3], mass[HUMAN_SEG_N], com[HUMAN_SEG_N][3], inertia[HUMAN_SEG_N][6];
 };
 
-/* lays out the figure for d (stature and mass already checked) */
-void human_layout_make(const struct human_def *d, struct human_layout *dest);
+/*
+ * Lays out the figure for d (stature and mass already checked) with its
+ * landmarks; returns 0, or -1 with why in err when the given measures are
+ * out of range or disagree beyond what the body can meet (human_dims.c).
+ */
+int human_layout_make(const struct human_def *d, struct human_layout *dest, char *err,
+		      size_t errlen);
+
 
 /* whole-body centre of mass of a layout */
 void human_layout_com(const struct human_layout *L, double dest[3]);

@@ -13,7 +13,7 @@
 
 #define MAX_WORDS 16 /* words in a statement: the longest has 9 */
 
-/* ---- words and numbers, as the protocol has them (PROTOCOL.md "Words") ---- */
+/* ---- words and numbers, as the protocol has them (docs/protocol.md "Words") ---- */
 
 /*
  * Splits line (NUL-terminated, no line end) into at most MAX_WORDS words
@@ -59,7 +59,7 @@ split_words(const char *line, const char **w, char *buf, const char **msg)
 	}
 }
 
-/* the units of PROTOCOL.md "Words"; scale takes a written value to metres or radians */
+/* the units of docs/protocol.md "Words"; scale takes a written value to metres or radians */
 static const struct {
 	const char *name;
 	enum dial_unit unit;

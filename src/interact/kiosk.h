@@ -1,5 +1,5 @@
 /*
- * kiosk.h - the kiosk's keyboard (issue 14, §1.7): keys become text
+ * kiosk.h - the kiosk's keyboard (§1.7): keys become text
  * (kbd_text, the configured layout) and go to the edit line whenever no
  * mode takes them; Enter gives the daemon a command line to run. In a
  * mode, a digit, a sign or a point starts a value typed for the active

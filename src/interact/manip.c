@@ -323,24 +323,20 @@ follow(struct manip *m)
 	}
 }
 
-/*
- * The 20 degree rule said no to the current selection: remember it, so
- * that asking again for the same thing counts as a repeat.
- */
+/* the 20 degree rule said no to the current selection; repeat: the same was the last choice */
 static enum manip_state
 refuse(struct manip *m, int repeat)
 {
 	m->refusal.repeat = repeat;
-	m->last_refused = m->sel;
-	m->have_last_refused = 1;
 	return MANIP_REFUSED;
 }
 
 /*
  * The chord changed: make its selection, check it, and anchor on the
  * mouse line the caller gave last (so the icons have their spokes before
- * any motion). A refusal of the selection refused just before is a
- * repeat; any action taken in between forgets it.
+ * any motion). A refusal of the selection whose refusal the last press
+ * settled on is a repeat (see settle()); the chords on the way to this
+ * one change nothing of that.
  */
 static enum manip_state
 choose(struct manip *m)
@@ -356,7 +352,6 @@ choose(struct manip *m)
 	if (anchor_and_check(m))
 		return refuse(m, m->have_last_refused &&
 					 same_selection(&m->last_refused, &m->sel));
-	m->have_last_refused = 0;
 	follow(m);
 	return state_of_mode(m->sel.mode);
 }
@@ -383,7 +378,6 @@ recheck(struct manip *m, enum manip_state now)
 	/* still refused: the user has chosen nothing new */
 	if (anchor_and_check(m))
 		return refuse(m, was_refused && repeat);
-	m->have_last_refused = 0;
 	return state_of_mode(m->sel.mode);
 }
 
@@ -430,6 +424,44 @@ dispatch(struct manip *m, enum manip_input in)
 	m->state = next_state(m, in, m->state);
 }
 
+/* ---- the choice a press settles on (section 3.7's "the same axis again") ------ */
+
+/*
+ * Keys go down and up one at a time, so a chord of two passes through a
+ * chord of one on the way in and on the way out (left then right: x, then
+ * the xz plane, then z or x). Those are not choices. What a press of the
+ * buttons chose is the chord held when the first of its keys (a button,
+ * SHIFT or CONTROL) comes up: the one the user built, and dragged with if
+ * the mouse moved. A drag that moves G after that, on what is still held,
+ * is an action of its own and takes its place.
+ */
+static void
+settle(struct manip *m)
+{
+	m->settled = 1;
+	m->settled_sel = m->sel;
+	m->settled_state = m->state;
+}
+
+/*
+ * The last button came up: a refusal settled on is remembered (the next
+ * choice of the same selection is the second try); an action forgets it;
+ * a chord with no action (three buttons, CONTROL with two) leaves it.
+ */
+static void
+remember_choice(struct manip *m)
+{
+	if (!m->settled)
+		return;
+	m->settled = 0;
+	if (m->settled_state == MANIP_REFUSED) {
+		m->last_refused = m->settled_sel;
+		m->have_last_refused = 1;
+	} else if (is_acting(m->settled_state)) {
+		m->have_last_refused = 0;
+	}
+}
+
 /* ---- the inputs -------------------------------------------------------------- */
 
 /* sets or clears bit in *mask; returns 1 when that changed it */
@@ -453,6 +485,7 @@ manip_event(struct manip *m, const struct input_event_rec *ev)
 	if (ev->kind == INPUT_KEY && ev->value == 2)
 		return 0;
 	int down = ev->value != 0, changed = 0;
+	unsigned held = m->buttons;
 	if (ev->kind == INPUT_BUTTON) {
 		switch (ev->code) {
 		case BTN_LEFT:
@@ -487,7 +520,11 @@ manip_event(struct manip *m, const struct input_event_rec *ev)
 	}
 	if (!changed)
 		return 0;
+	if (!down && held && !m->settled)
+		settle(m); /* the chord as it was before this key came up */
 	dispatch(m, IN_CHORD);
+	if (held && !m->buttons)
+		remember_choice(m);
 	return 1;
 }
 
@@ -518,7 +555,10 @@ manip_ray(struct manip *m, const struct ray *r)
 	m->ray = *r;
 	m->have_ray = 1;
 	dispatch(m, IN_RAY);
-	return memcmp(&before, &m->g, sizeof before) != 0;
+	int moved = memcmp(&before, &m->g, sizeof before) != 0;
+	if (moved && m->settled)
+		settle(m); /* a drag on what is held after a key came up */
+	return moved;
 }
 
 void

@@ -23,8 +23,11 @@
  * to the line of sight, or rotating about an axis, or translating in a
  * plane, whose plane is closer than the limit to edge-on, is refused: the
  * state is MANIP_REFUSED, G stays, and manip_refusal() says why and
- * whether the user chose that same axis again right after the warning,
- * the trigger of the automatic view adjustment (a later step).
+ * whether the user chose that same axis again after the warning, the
+ * trigger of the automatic view adjustment. "Chose" is decided on the
+ * chord a press of the buttons settles on (held when its first key comes
+ * up), not on the chords it passes through while keys go down or up one
+ * at a time, so a plane or a wheel has its second try as an axis does.
  *
  * The line of sight is the line from the camera's eye to G's origin, not
  * the camera's -z: in perspective an axis through an object off the
@@ -95,7 +98,7 @@ struct manip_def {
 /* why the current chord does nothing, for the message line and the view adjustment */
 struct manip_refusal {
 	int active;  /* 1 while MANIP_REFUSED */
-	int repeat;  /* 1 when this selection was refused just before too (no other action between) */
+	int repeat;  /* 1 when the last press settled on this selection's refusal, no action since */
 	struct manip_selection sel;
 	double angle;        /* between the axis (or the plane's normal) and the line of sight, rad */
 	double axis[3];      /* the refused axis or normal, world, unit */
@@ -143,8 +146,11 @@ struct manip {
 	double angle;      /* ROTATE: summed turn of the spokes since the anchor */
 	/* the 20 degree rule */
 	struct manip_refusal refusal;
-	int have_last_refused;
-	struct manip_selection last_refused;
+	int have_last_refused;              /* the last press settled on a refusal ... */
+	struct manip_selection last_refused; /* ... of this selection */
+	int settled;                        /* this press's choice is taken (a key came up) */
+	struct manip_selection settled_sel; /* that choice */
+	enum manip_state settled_state;     /* and whether it was refused or acted */
 };
 
 /* 20 degrees; ALT a tenth; increments of 1 cm and 5 degrees */

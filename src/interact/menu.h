@@ -1,5 +1,5 @@
 /*
- * menu.h - the kiosk's pop-up menu of commands (issue 14, §1.7: Jack's
+ * menu.h - the kiosk's pop-up menu of commands (§1.7: Jack's
  * commands were picked from pop-up menus). A mouse button pressed on the
  * background with no mode active opens it at the pointer; it lists the
  * commands ("manipulate joint", "save posture") under group titles, and

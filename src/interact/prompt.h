@@ -1,6 +1,6 @@
 /*
- * prompt.h - a command asks for its missing arguments one by one (§1.7,
- * issue 14): "select a figure", "select a site", "angle?". From the
+ * prompt.h - a command asks for its missing arguments one by one (§1.7):
+ * "select a figure", "select a site", "angle?". From the
  * command's usage (proto/commands.def's) and the words typed so far, the
  * placeholders still missing are asked for in order; each answer is a
  * word, picked with the pointer (a figure, a joint, a site, a view) or

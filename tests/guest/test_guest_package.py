@@ -1,4 +1,4 @@
-"""The package on a clean Debian 12 (issue 16): make deb's package, installed with
+"""The package on a clean Debian 12: make deb's package, installed with
 `apt-get install ./posture_*.deb` into a debootstrap'ed minbase bookworm (Debian resolves
 its Depends from the archive), has its files in place and its user; that root booted in
 QEMU (Debian's kernel, systemd as init, -vga std) starts the enabled postured.service,

@@ -1,4 +1,4 @@
-"""The real daemon on the machine's screen (issue 16): postured runs in the QEMU guest with
+"""The real daemon on the machine's screen: postured runs in the QEMU guest with
 QEMU's standard VGA (bochs-drm) and `--display auto --vt /dev/tty1 --init tools/kiosk.init`:
 auto takes KMS, the frames it writes are what the CRTC shows (the kiosk's picture, not the
 console's framebuffer), tty1 is in graphics mode while it runs, and after SIGTERM it exits 0

@@ -1,4 +1,4 @@
-"""The attract mode (issue 15): with --attract DIR, a recording plays in a loop once nobody has
+"""The attract mode: with --attract DIR, a recording plays in a loop once nobody has
 touched the kiosk for --attract-after seconds; questions over the socket (get, status) leave
 it playing; the first real input (an `input` line, a command, a device) ends it, and the
 state is exactly what it was before, bit for bit (the `status` posture hash, the figures, the

@@ -1,4 +1,4 @@
-"""Behaviours through the daemon (issue 6): the figures of Chapter 5 by commands, and
+"""Behaviours through the daemon: the figures of Chapter 5 by commands, and
 behaviour state that survives kill -9 exactly."""
 import math
 

@@ -1,4 +1,4 @@
-"""The dial panel at work (issue 14): the bindings file (tools/panel.bindings, for the
+"""The dial panel at work: the bindings file (tools/panel.bindings, for the
 example panel map) and `bind` at run time turn a picked joint's DOF, the view, a behaving
 human's elevation and torso, and G; panel buttons run commands; a turn of the dials is one
 undo. Dials are relative: only the change of a dial's value moves (Jack's dial box). The

@@ -1,4 +1,4 @@
-"""--display (issue 16): the kiosk's screen. On a machine without a screen (no /dev/dri/card*,
+"""--display: the kiosk's screen. On a machine without a screen (no /dev/dri/card*,
 no /dev/fb0, as here) `auto` says why it has neither and the daemon does not start; a KMS
 spec names the card it could not open. (The KMS sink itself is tested against a real kernel in
 the QEMU guest: tests/guest/test_guest_kms.py.)"""

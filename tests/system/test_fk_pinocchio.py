@@ -9,7 +9,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from conftest import FIGURE_ARGS, random_postures, read_dofs, read_sites, run_tool
+from conftest import FIGURE_ARGS, ROOT, random_postures, read_dofs, read_sites, run_tool
 
 POSTURES = 100
 TOL = 1e-9
@@ -82,6 +82,59 @@ def check_against_pinocchio(args, root, tmp_path, seed):
     assert worst_p < TOL, f"site position differs from Pinocchio by {worst_p:.3g} m"
     assert worst_r < TOL, f"site rotation differs from Pinocchio by {worst_r:.3g}"
     assert worst_c < TOL, f"centre of mass differs from Pinocchio by {worst_c:.3g} m"
+
+
+def manikins():
+    """Figures built from ANSUR II subjects' 20 measures: the shortest woman, the tallest man,
+    the lightest and the heaviest of all, and one more of each sex at random (seeded)."""
+    import csv
+    import random
+    names = ("stature acromialheight wristheight trochanterionheight kneeheightmidpatella "
+             "lateralmalleolusheight sittingheight eyeheightsitting acromionradialelength "
+             "radialestylionlength handlength footlength buttockkneelength kneeheightsitting "
+             "poplitealheight biacromialbreadth hipbreadth span thumbtipreach weightkg").split()
+    people = []
+    for sex in ("male", "female"):
+        path = ROOT / "data" / "ansur2" / f"ANSUR_II_{sex.upper()}_Public.csv"
+        with open(path, encoding="latin-1", newline="") as f:
+            for r in csv.DictReader(f):
+                m = {k: float(r[k]) for k in names}
+                m["weightkg"] /= 10
+                people.append((sex, m))
+    women = [p for p in people if p[0] == "female"]
+    men = [p for p in people if p[0] == "male"]
+    rnd = random.Random(24)
+    chosen = {
+        "shortest-woman": min(women, key=lambda p: p[1]["stature"]),
+        "tallest-man": max(men, key=lambda p: p[1]["stature"]),
+        "lightest": min(people, key=lambda p: p[1]["weightkg"]),
+        "heaviest": max(people, key=lambda p: p[1]["weightkg"]),
+        "a-woman": rnd.choice(women),
+        "a-man": rnd.choice(men),
+    }
+    out = {}
+    for name, (sex, m) in chosen.items():
+        args = ["--human", "--sex", sex]
+        for k, v in m.items():
+            args += ["--measure", f"{k}={v!r}"]
+        out[name] = (args, m["weightkg"])
+    return out
+
+
+MANIKINS = manikins()
+
+
+@pytest.mark.parametrize("manikin", sorted(MANIKINS))
+def test_manikins_from_measures_match_pinocchio(manikin, tmp_path):
+    """A figure built from a subject's measures: its sites and centre of mass over 100
+    postures as Pinocchio computes them on its URDF, and its mass (Pinocchio's sum of the
+    links' masses) the subject's weight."""
+    args, weight = MANIKINS[manikin]
+    check_against_pinocchio(args, None, tmp_path, seed=sorted(MANIKINS).index(manikin))
+    model = pin.buildModelFromUrdf(str(tmp_path / "figure.urdf"))
+    # the export gives each dof's intermediate link a negligible 1e-9 kg (about 1e-7 in all)
+    mass = sum(model.inertias[i].mass for i in range(model.njoints))
+    assert abs(mass - weight) < 1e-6, (mass, weight)
 
 
 @pytest.mark.parametrize("figure", sorted(FIGURE_ARGS))

@@ -174,7 +174,7 @@ CASES = [
     Case("bare carriage return inside", b"status\rstatus\n", ("binary",), close=True),
     Case("binary then a valid line", b"\x00\x01\x02\nunload figure jack\n", ("binary",),
          close=True),
-    # DEL (0x7f) is a control byte too (PROTOCOL.md, Framing)
+    # DEL (0x7f) is a control byte too (docs/protocol.md, Framing)
     Case("DEL byte", b"get posture ja\x7fck\n", ("binary",), close=True),
     # ---- half lines, then the client goes away: nothing runs, nothing is answered
     Case("half a set joint, hang up", b"set joint jack knee_l 1", hangup=True),

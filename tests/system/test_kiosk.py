@@ -1,4 +1,4 @@
-"""The kiosk's keyboard end to end (issue 14): keys typed over the socket as a keyboard
+"""The kiosk's keyboard end to end: keys typed over the socket as a keyboard
 gives them (`input key` lines, a US layout) reach the edit line when no mode takes them;
 Enter runs the line as a command, journaled like a client's; Tab completes; the
 change-view key, undo and redo; a value typed during a manipulation. Pictures of the edit

@@ -1,4 +1,4 @@
-"""The kiosk's screen shared by several views (issue 14): `layout` tiles them on the screen
+"""The kiosk's screen shared by several views: `layout` tiles them on the screen
 (--screen here, the framebuffer's size on a kiosk) above one band for the message and
 status lines, each view resized to its tile; the pointer is the screen's and moves across
 the tiles; the layout is part of the session and survives a kill; `render screen` is what

@@ -1,4 +1,4 @@
-"""The pop-up menu of commands (issue 14): a mouse button on the background with no mode
+"""The pop-up menu of commands: a mouse button on the background with no mode
 opens it at the pointer; typing filters it, the keys and the pointer move its highlight;
 a choice goes on as the command typed, its missing arguments asked for; ESC closes it and
 nothing changes. A button on a figure opens nothing."""

@@ -1,4 +1,4 @@
-"""Prompts (issue 14): a command typed without its arguments asks for them one by one on
+"""Prompts: a command typed without its arguments asks for them one by one on
 the status line; the person picks with the pointer (what is under it is highlighted) or
 types; ESC cancels and nothing changes. What a click picks is checked against `pick` on
 the same pixel, and the joint above a segment against the figure's own description."""

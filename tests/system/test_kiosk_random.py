@@ -1,4 +1,4 @@
-"""The kiosk against random input (issue 14, robustness): streams of keys, buttons, motion,
+"""The kiosk against random input (robustness): streams of keys, buttons, motion,
 pointer positions and dial values, in any order, never crash the daemon, never leave a
 mode stuck (ESC brings the kiosk back to idle), and leave an environment that the journal
 gives back exactly after a kill -9: what the kiosk did is what a sequence of journaled

@@ -1,4 +1,4 @@
-"""The kiosk end to end through recorded input (issue 14): under umockdev a keyboard and a
+"""The kiosk end to end through recorded input: under umockdev a keyboard and a
 mouse replay evemu recordings made here (the kernel's codes from its own header) on the
 daemon's real evdev path: the keyboard types commands at the edit line, the mouse drags
 the figure in the mode they started, the keyboard's ESC ends it. Then a HID mouse (a

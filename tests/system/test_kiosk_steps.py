@@ -1,4 +1,4 @@
-"""The kiosk's steps (issue 14): a drag from the first button down to the last one up is one
+"""The kiosk's steps: a drag from the first button down to the last one up is one
 undoable, journaled step; a daemon killed mid-drag comes back to the last completed step;
 while a step is under way another client's change to the figure it moves is refused `busy`;
 `subscribe kiosk` tells the mode and the step as they change; a button held too long ends

@@ -1,4 +1,4 @@
-"""Golden transcripts of kiosk sessions (issue 14): tests/kiosk/*.txt give what a person
+"""Golden transcripts of kiosk sessions: tests/kiosk/*.txt give what a person
 did (`<` lines: socket lines, `type TEXT` typed on a US keyboard, `key NAME` pressed and
 released, `chord A B` held together) and what the journal must hold for it (`>` lines: the
 command records `C LINE`, `*` at the end of a line matching any rest, and the step marks

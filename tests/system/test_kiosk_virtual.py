@@ -1,4 +1,4 @@
-"""The kiosk over minutes of virtual time (issues 14 and 15): `postured --drive FILE` runs a
+"""The kiosk over minutes of virtual time: `postured --drive FILE` runs a
 script of timed lines frame by frame under a virtual clock, as fast as the machine goes.
 
 - A mouse button held without release for 60 s ends its drag (the step closes between 59 s

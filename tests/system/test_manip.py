@@ -1,9 +1,10 @@
-"""The manipulation operator through the daemon (issue 13): `manipulate figure` starts the
+"""The manipulation operator through the daemon: `manipulate figure` starts the
 mode, `input` lines drive it as a mouse does, ESC ends it, `get manip` says where G is.
 The expected positions are Appendix B's geometry computed here in Python from the mouse
 lines the daemon's `pick` gives (the mouse line itself is checked against PyGLM in
 test_pick.py)."""
 import math
+import time
 
 import pytest
 
@@ -416,6 +417,74 @@ def wait_view(c, name, pred, limit=3):
             return v
         time.sleep(0.02)
     return v
+
+
+def angle_to_plane(eye, g, normal):
+    """degrees between the line of sight from eye to g and the plane with this unit normal"""
+    sight = sub(g, eye)
+    return math.degrees(math.asin(abs(dot(sight, normal)) / math.sqrt(dot(sight, sight))))
+
+
+def test_choosing_a_refused_plane_again_turns_the_view_as_an_axis_does(daemon):
+    """§3.7's second try for a two-button plane: the buttons go down one after the other, so
+    the chord passes through a one-button axis that is not refused (x here); that passing
+    state is not a choice, and the second planar try turns the camera as a second axis or
+    wheel does. From (3, 1.6, 4) the line of sight to G is about 7.7 degrees from the
+    horizontal xz plane, which is refused."""
+    with daemon.client() as c:
+        setup(c, eye="3,1.6,4", target="0,1,0")
+        c.request("manipulate figure human")
+        g = c.request("get manip")["position"]
+        before = next(v for v in c.request("list views")["views"] if v["name"] == "front")
+        assert angle_to_plane(before["eye"], g, [0, 1, 0]) < 20
+
+        def planar_try():
+            c.request("input pointer front 160 120")
+            c.request("input button left down")
+            assert c.request("get manip")["state"] == "linear"  # x on the way: not refused
+            c.request("input button right down")
+
+        # the first try: the warning, and neither the camera nor G moves under the drag
+        planar_try()
+        m = c.request("get manip")
+        assert m["state"] == "refused" and m["axis"] == "xz"
+        assert m["message"] == "can't translate in that plane from this view"
+        for x in range(165, 230, 8):
+            c.request(f"input pointer front {x} 140")
+        time.sleep(0.3)  # several frames: an adjustment, were one begun, would show
+        assert c.request("get manip")["position"] == pytest.approx(g, abs=1e-12)
+        v = next(v for v in c.request("list views")["views"] if v["name"] == "front")
+        assert v["eye"] == before["eye"] and v["target"] == before["target"]
+        c.request("input button left up")
+        c.request("input button right up")
+
+        # the second try: the same plane again turns the camera about G until it is clear
+        planar_try()
+        v = wait_view(c, "front", lambda v: v["target"] == pytest.approx(g, abs=1e-6))
+        assert v["target"] == pytest.approx(g, abs=1e-6)  # focused on G's origin
+        assert math.dist(v["eye"], g) == pytest.approx(math.dist(before["eye"], g), abs=1e-6)
+        angle = angle_to_plane(v["eye"], g, [0, 1, 0])
+        assert 20 <= angle < 23, angle  # clear by the least turn (and a degree's margin)
+        m = c.request("get manip")
+        assert m["state"] == "planar" and m["axis"] == "xz"
+
+        # and the held chord now drags G in the plane y = g.y, under the pointer
+        c.request("input pointer front 160 120")  # anchors in the new view
+        c.request("input pointer front 200 150")
+        o1, d1 = ray(c, "front", 160, 120)
+        o2, d2 = ray(c, "front", 200, 150)
+
+        def hit(o, d):  # the mouse line through the plane y = g.y
+            t = (g[1] - o[1]) / d[1]
+            return [o[i] + t * d[i] for i in range(3)]
+        want = [g[i] + hit(o2, d2)[i] - hit(o1, d1)[i] for i in range(3)]
+        got = c.request("get manip")["position"]
+        assert got == pytest.approx(want, abs=1e-9)
+        assert math.dist(got, g) > 0.1
+        root = c.request("show figure human")["root"]
+        assert c.request(f"get site human {root}")["position"] == pytest.approx(got, abs=1e-9)
+        c.request("input button left up")
+        c.request("input button right up")
 
 
 def test_c_takes_an_automatic_view_change_back(daemon):

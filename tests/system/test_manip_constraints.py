@@ -1,4 +1,4 @@
-"""Manipulation with constraints (§4.6.3, issue 13): moving a figure with the operator while
+"""Manipulation with constraints (§4.6.3): moving a figure with the operator while
 other constraints hold. A human's hand holding a place on a box follows the box the mouse
 moves (hold local location, Table D.4); a box the hand grabbed follows the hand the mouse
 moves. The expected motion is G's, which the mouse line gives (test_manip.py checks G)."""

@@ -1,4 +1,4 @@
-"""Sites moved on their segments (issue 13): `set site` over the socket and the
+"""Sites moved on their segments: `set site` over the socket and the
 `manipulate site` mode the kiosk starts. The expected frames are the segment's frame
 times the site's location, computed here from frames the daemon reports with the site
 put on the segment's own frame (identity location), so nothing is copied from the

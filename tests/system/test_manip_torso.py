@@ -1,4 +1,4 @@
-"""bend torso as an interactive mode (Table 5.2, issue 13): CONTROL and a button turn G,
+"""bend torso as an interactive mode (Table 5.2): CONTROL and a button turn G,
 which sits on the chest in the pelvis's axes; the turn is the spine's bend. The reference
 is the `bend torso` command itself on an identical second figure, with totals summed here
 from the spine's joint values (the spine model's totals are the sums of its joints,

@@ -26,7 +26,7 @@ from posture import format_command, quote_word
 
 TRANSCRIPTS = sorted((ROOT / "proto" / "transcripts").glob("*.txt"))
 COMMANDS_DEF = ROOT / "proto" / "commands.def"
-PROTOCOL_MD = ROOT / "proto" / "PROTOCOL.md"
+PROTOCOL_MD = ROOT / "docs" / "protocol.md"
 POSTURECTL = ROOT / "tools" / "posturectl"
 TOLERANCE = 1e-9
 
@@ -309,7 +309,7 @@ def test_help_lists_commands_def(daemon):
 
 
 def test_protocol_md_table_is_generated():
-    """PROTOCOL.md holds the table `postured --protocol-table` prints."""
+    """docs/protocol.md holds the table `postured --protocol-table` prints."""
     if not POSTURED.exists():
         pytest.fail(f"{POSTURED} is not built")
     out = subprocess.run([str(POSTURED), "--protocol-table"], capture_output=True, text=True,
@@ -317,7 +317,7 @@ def test_protocol_md_table_is_generated():
     assert out.returncode == 0, out.stderr
     table = out.stdout.strip()
     assert table.count("\n") + 1 >= len(COMMANDS), table
-    assert table in PROTOCOL_MD.read_text(), "PROTOCOL.md's command table is out of date"
+    assert table in PROTOCOL_MD.read_text(), "docs/protocol.md's command table is out of date"
 
 
 def test_arity_follows_commands_def(daemon):

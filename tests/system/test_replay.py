@@ -1,4 +1,4 @@
-"""Recorded-input replay (issue 15): a live session recorded with --record (or `record start`)
+"""Recorded-input replay: a live session recorded with --record (or `record start`)
 replays with --replay to the same postures, bit for bit, under the recording's clock.
 
 The reference is the live daemon itself: its `status` posture hash at the end of the session

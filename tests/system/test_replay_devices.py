@@ -1,4 +1,4 @@
-"""Recorded devices (issue 15): a keyboard and a mouse read directly (evdev, under umockdev,
+"""Recorded devices: a keyboard and a mouse read directly (evdev, under umockdev,
 replaying evemu files written here) type and drag at the kiosk while the daemon records; the
 recording keeps their bytes as evemu files and every call into their decoders in the frame
 log, and its replay feeds the same bytes through the same decoders to the same postures.

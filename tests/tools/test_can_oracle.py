@@ -34,7 +34,7 @@ def test_committed_files_are_what_cantools_and_dbc2panel_give(tmp_path, name):
             assert f.read() == committed, f"{name}.{ext} differs: re-run make_expect.py"
 
 
-def test_expectations_cover_what_the_issue_asks():
+def test_expectations_cover_every_kind_of_signal():
     with open(os.path.join(CAN_DIR, "panel.map")) as f:
         lines = map_lines(f.read())
     fields = {line[3]: line[2] for line in lines}

@@ -1,5 +1,5 @@
 /*
- * ik_arm - the arm inverse-kinematics benchmark of issue 3: ours beside
+ * ik_arm - the arm inverse-kinematics benchmark: ours beside
  * NLopt's LD_LBFGS and LD_SLSQP on exactly our objective and bounds.
  *
  * usage: ik_arm TARGETS_OUT [N]

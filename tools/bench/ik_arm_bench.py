@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Arm inverse kinematics (issue 3): ours beside NLopt, Pinocchio's CLIK and IKPy, in one run.
+"""Arm inverse kinematics: ours beside NLopt, Pinocchio's CLIK and IKPy, in one run.
 
 The right arm of the standard human (clavicle_r, shoulder_r, elbow_r, wrist_r: 9 dofs) reaches
 for 1000 random reachable 6-D targets, the frame of site hand_r.palm in postures drawn within

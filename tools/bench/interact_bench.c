@@ -1,5 +1,5 @@
 /*
- * interact_bench - the cost of one interactive frame (issue 13's target:
+ * interact_bench - the cost of one interactive frame (its target:
  * median at most 0.5 ms): the pointer moves, the mode turns it into a
  * mouse line and the operator moves G (interact_input), the feature under
  * the pointer is picked, G feeds the behaviour primitive (move hand), and

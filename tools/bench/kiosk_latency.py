@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Input to pixels at the kiosk (issue 14): from an input event's timestamp to the end of
+"""Input to pixels at the kiosk: from an input event's timestamp to the end of
 the write of the first frame that shows it into the framebuffer sink, while a hand is
 dragged at 1280x720 with behaviours on.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Recording and replay (issue 15): how fast a recorded kiosk session replays, and what
+"""Recording and replay: how fast a recorded kiosk session replays, and what
 recording costs the live loop.
 
 A SESSION_S-second kiosk session is performed on build/rel/bin/postured at 60 fps: the

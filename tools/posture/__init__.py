@@ -1,6 +1,6 @@
 """posture: the Python client of postured (standard library only).
 
-See :mod:`posture.client` and proto/PROTOCOL.md. ``posturectl`` (next to this package)
+See :mod:`posture.client` and docs/protocol.md. ``posturectl`` (next to this package)
 is the command-line client built on it.
 """
 from .client import (DEFAULT_TIMEOUT, MAX_LINE, MAX_WORDS, Client, ConnectionClosed,

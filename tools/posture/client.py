@@ -1,4 +1,4 @@
-"""A client for postured's line protocol (proto/PROTOCOL.md), standard library only.
+"""A client for postured's line protocol (docs/protocol.md), standard library only.
 
 One request is one line; every request gets exactly one reply line, in order:
 ``{"ok":true,"result":{...}}`` or ``{"ok":false,"error":{"code":...,"message":...}}``,
@@ -9,7 +9,7 @@ sees an event and a caller waiting for events never loses a reply.
 
 Typical use::
 
-    with Client() as c:                      # default socket, as PROTOCOL.md says
+    with Client() as c:                      # default socket, as docs/protocol.md says
         fig = c.call("load", "human", "as", "jack")["figure"]
         c.request("set joint jack knee_l 30deg")
         c.subscribe("posture")
@@ -38,7 +38,7 @@ _QUOTE_CHARS = frozenset(' \t"\\')
 class PostureError(Exception):
     """The daemon answered a request with an error reply.
 
-    Attributes: ``code`` (one of PROTOCOL.md's error codes, e.g. ``"not-found"``),
+    Attributes: ``code`` (one of docs/protocol.md's error codes, e.g. ``"not-found"``),
     ``message`` (the daemon's human-readable text), ``tag`` (the request's tag or None)
     and ``reply`` (the whole decoded reply object).
     """
@@ -64,7 +64,7 @@ class ConnectionClosed(ConnectionError):
 
 
 def default_socket_path(environ=None):
-    """Returns the daemon's default socket path as PROTOCOL.md gives it.
+    """Returns the daemon's default socket path as docs/protocol.md gives it.
 
     ``$XDG_RUNTIME_DIR/posture/postured.sock`` when XDG_RUNTIME_DIR is set and not
     empty, else ``/tmp/posture-$UID/postured.sock``.
