@@ -199,6 +199,7 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	const char *msg;
 	memset(out, 0, sizeof *out);
 	daemon_text_clear(&d->file_read); /* the last command's, journaled by now */
+	d->journal_as[0] = '\0';
 	if (len && line[len - 1] == '\r')
 		len--;
 	out->reply = 1;

@@ -69,6 +69,8 @@ cmd_list_figures(struct cmd_ctx *c)
 			f->state->root_site, root, sizeof root)));
 		if (f->is_human)
 			manikin_json(f, o);
+		if (daemon_is_ghost(c->d, i)) /* a family overlaid: drawn translucent, never picked */
+			json_object_set_new(o, "ghost", json_true());
 		json_array_append_new(list, o);
 	}
 	json_object_set_new(c->result, "figures", list);

@@ -375,6 +375,11 @@ journal_command(struct journal *j, const struct daemon *d, const char *line, siz
 		if (rc < 0)
 			return -1;
 	}
+	/* the command as it is to be done again, its defaults written out (daemon.h) */
+	if (d->journal_as[0]) {
+		line = d->journal_as;
+		len = strlen(line);
+	}
 	if (record(j, 'C', line, len) < 0)
 		return -1;
 	/* replaying the command reproduces its postures: no P records for them */

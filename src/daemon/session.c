@@ -10,6 +10,7 @@
 #include "pose/behave.h"
 #include "figure/figure.h"
 #include "figure/kin.h"
+#include "daemon/family.h"
 #include "daemon/manikin.h"
 #include "daemon/words.h"
 
@@ -154,6 +155,11 @@ session_write(const struct env *e, FILE *f)
 			fprintf(f, " %s", e->view[e->layout[i]].name);
 		fprintf(f, "\n");
 	}
+	int sel = family_selected(e);
+	if (sel >= 0) /* a family shown, with members left */
+		fprintf(f, "show family %s %s select=%s spacing=%.17g\n", e->show.family,
+			e->show.arrange == ENV_SHOW_ROW ? "row" : "overlay", e->fig[sel].name,
+			e->show.spacing);
 	fprintf(f, "end\n");
 	return ferror(f) ? -1 : 0;
 }
@@ -565,6 +571,39 @@ read_layout(struct reader *r, struct env *e)
 	return 0;
 }
 
+/*
+ * show family PREFIX row|overlay select=FIG spacing=M: the family shown at
+ * the kiosk, its members and the selected one defined above
+ */
+static int
+read_show(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	struct env_show sh = { 0 };
+	const char *sel = NULL, *sp = NULL;
+	for (int i = 4; i < w->n; i++)
+		if (words_is_key(w->w[i], "select"))
+			sel = w->w[i] + 7;
+		else if (words_is_key(w->w[i], "spacing"))
+			sp = w->w[i] + 8;
+	if (w->n != 6 || strcmp(w->w[1], "family") || !sel || !sp || !words_is_name(w->w[2]) ||
+	    words_number(sp, UNIT_NONE, &sh.spacing) < 0 || sh.spacing < 0)
+		return fail(r, "expected: show family PREFIX row|overlay select=FIG spacing=M");
+	if (!strcmp(w->w[3], "row"))
+		sh.arrange = ENV_SHOW_ROW;
+	else if (!strcmp(w->w[3], "overlay"))
+		sh.arrange = ENV_SHOW_OVERLAY;
+	else
+		return fail(r, "show family: row or overlay, not '%s'", w->w[3]);
+	int fig = env_find_figure(e, sel);
+	if (fig < 0 || !family_is_member(e, w->w[2], fig))
+		return fail(r, "show family: %s is no member of family %s defined above", sel, w->w[2]);
+	snprintf(sh.family, sizeof sh.family, "%s", w->w[2]);
+	snprintf(sh.selected, sizeof sh.selected, "%s", sel);
+	e->show = sh;
+	return 0;
+}
+
 int
 session_read(const char *text, size_t len, const char *base_dir, const char *library_dir,
 	     struct env *dest, char *err, size_t errlen)
@@ -607,6 +646,8 @@ session_read(const char *text, size_t len, const char *base_dir, const char *lib
 			ok = read_view(r, dest);
 		else if (!strcmp(kw, "layout"))
 			ok = read_layout(r, dest);
+		else if (!strcmp(kw, "show"))
+			ok = read_show(r, dest);
 		else if (!strcmp(kw, "behave") || !strcmp(kw, "bdef"))
 			ok = read_behave(r, dest);
 		else if (!strcmp(kw, "attach"))
@@ -636,19 +677,6 @@ out:
 	return rc;
 }
 
-/* the height of a human's lowest foot point: the lowest site of its feet and toes */
-static double
-sole_height(const struct model *m, const struct state *s)
-{
-	double y = INFINITY;
-	for (int k = 0; k < m->nsite; k++) {
-		const char *seg = m->seg_name[m->site_seg[k]];
-		if (!strncmp(seg, "foot_", 5) || !strncmp(seg, "toes_", 5))
-			y = fmin(y, s->site_xf[k].p[1]);
-	}
-	return y;
-}
-
 int
 session_write_posture(const struct env *e, int fig, FILE *f)
 {
@@ -661,7 +689,7 @@ session_write_posture(const struct env *e, int fig, FILE *f)
 	write_xform(f, &s->root_xf);
 	fprintf(f, "\n");
 	if (fg->is_human)
-		fprintf(f, "support %.17g\n", sole_height(m, s));
+		fprintf(f, "support %.17g\n", family_sole_height(m, s));
 	for (int j = 0; j < m->njnt; j++) {
 		if (!m->jnt_ndof[j])
 			continue;
@@ -747,7 +775,7 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 		state_root_at(m, fg->state, root, &root_xf);
 	kin_update(m, fg->state);
 	/* a human of another size: its feet as high as the file's were (it stands where that one stood) */
-	double shift = fg->is_human && !isnan(support) ? support - sole_height(m, fg->state) : 0;
+	double shift = fg->is_human && !isnan(support) ? support - family_sole_height(m, fg->state) : 0;
 	if (fabs(shift) > 1e-9) {
 		struct xform at = fg->state->root_xf;
 		at.p[1] += shift;

@@ -12,7 +12,7 @@
 
 #include "pose/env.h"
 
-#define SESSION_VERSION 2 /* 2: a human's measures and provenance (manikin.h) */
+#define SESSION_VERSION 3 /* 2: a human's measures and provenance (manikin.h); 3: the family shown */
 #define POSTURE_VERSION 2 /* 2: a human's support height */
 
 /* writes the whole environment; 0, or -1 on an I/O error */

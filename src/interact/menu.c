@@ -46,6 +46,7 @@ struct group_key {
 static const struct group_key group_table[] = {
 	{ "load", "human", G_FIGURES },
 	{ "load", "family", G_FIGURES },
+	{ "show", "family", G_FIGURES },
 	{ "load", "population", G_FIGURES },
 	{ "load", "figure", G_FIGURES },
 	{ "unload", "figure", G_FIGURES },

@@ -34,6 +34,7 @@ env_clear(struct env *e)
 	memset(e->con, 0, sizeof e->con);
 	memset(e->view, 0, sizeof e->view);
 	memset(e->att, 0, sizeof e->att);
+	memset(&e->show, 0, sizeof e->show);
 }
 
 static int

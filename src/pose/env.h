@@ -94,6 +94,28 @@ struct env_attach {
 
 #define ENV_MAX_ATTACH (4 * ENV_MAX_FIGURES)
 
+/*
+ * A family shown at the kiosk (show family): its members in a row or
+ * overlaid, the selected one opaque and the others translucent ghosts. A
+ * display state, kept in sessions, undo and the journal with the roots the
+ * arrangement set, so what comes back draws and picks as it was left.
+ * Members and the selected one are looked up by name when needed: a
+ * member unloaded leaves the others shown, the selected one gone falls
+ * back to the first member.
+ */
+enum env_arrange {
+	ENV_SHOW_OFF,
+	ENV_SHOW_ROW,     /* side by side along a view's horizontal */
+	ENV_SHOW_OVERLAY, /* all at the selected one's place; the others ghosts */
+};
+
+struct env_show {
+	int arrange;                   /* enum env_arrange */
+	char family[MODEL_NAME_MAX];   /* the family's prefix */
+	char selected[MODEL_NAME_MAX]; /* the member drawn opaque, the status line's */
+	double spacing;                /* ENV_SHOW_ROW: metres between neighbours' places */
+};
+
 /* a named view (§1.7: several graphics windows), its camera aimed at a point */
 struct env_view {
 	int used;
@@ -112,6 +134,7 @@ struct env {
 	int layout[ENV_MAX_VIEWS];
 	int nlayout;
 	struct env_attach att[ENV_MAX_ATTACH];
+	struct env_show show;
 	uint32_t next_gen;
 };
 
