@@ -1,6 +1,7 @@
 /*
  * cmd_family.c - a family of manikins shown at the kiosk: side by side in
- * a row, or overlaid with the others as ghosts about the selected one.
+ * a row, or overlaid with the others as ghosts about the selected one; and
+ * posed alike, each as the selected one is, where it stands.
  */
 #include <math.h>
 #include <stdio.h>
@@ -136,5 +137,46 @@ cmd_show_family(struct cmd_ctx *c)
 		json_object_set_new(c->result, "view", v >= 0 ? json_string(e->view[v].name) : json_null());
 		json_object_set_new(c->result, "direction", cmd_vec(h, 3));
 	}
+	return 0;
+}
+
+int
+cmd_pose_family(struct cmd_ctx *c)
+{
+	struct env *e = &c->d->env;
+	const char *prefix = c->argv[0];
+	for (int i = 1; i < c->argc; i++)
+		if (!words_is_key(c->argv[i], "like"))
+			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
+	int slot[ENV_MAX_FIGURES], n = family_members(e, prefix, slot);
+	if (!n)
+		return cmd_fail(c, "not-found", "no family '%.60s' (load family PREFIX sex=... makes one)",
+				prefix);
+	/* like the figure named, else the family's selected one when it is shown, else its first */
+	const char *like = cmd_key(c, "like");
+	int from = like ? cmd_figure(c, like) : -1;
+	if (like && from < 0)
+		return -1;
+	if (!like)
+		from = !strcmp(e->show.family, prefix) && family_selected(e) >= 0 ? family_selected(e)
+										   : slot[0];
+	if (!e->fig[from].is_human)
+		return cmd_fail(c, "bad-argument", "%s is not a human figure", e->fig[from].name);
+	const struct daemon_step *st = &c->d->step;
+	for (int i = 0; c->client >= 0 && st->open && i < n; i++)
+		if (slot[i] == st->fig && e->fig[slot[i]].gen == st->gen)
+			return cmd_fail(c, "busy", "the kiosk is moving %s (%s mode, a button held or the "
+					"dials turning): posing its family waits until the step ends",
+					e->fig[slot[i]].name, st->mode);
+	char err[256];
+	if (family_pose_alike(e, slot, n, from, err, sizeof err) < 0)
+		return cmd_fail(c, "bad-argument", "%s", err);
+	json_t *names = json_array();
+	for (int i = 0; i < n; i++)
+		if (slot[i] != from)
+			json_array_append_new(names, json_string(e->fig[slot[i]].name));
+	json_object_set_new(c->result, "family", json_string(prefix));
+	json_object_set_new(c->result, "like", json_string(e->fig[from].name));
+	json_object_set_new(c->result, "figures", names);
 	return 0;
 }

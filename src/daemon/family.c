@@ -177,6 +177,52 @@ family_arrange(struct env *e, const int *slot, const struct pick_model *const *p
 	return 0;
 }
 
+int
+family_pose_alike(struct env *e, const int *slot, int n, int from, char *err, size_t errlen)
+{
+	const struct model *fm = e->fig[from].model;
+	const double *q = e->fig[from].state->q;
+	/* everything checked before anything moves */
+	for (int i = 0; i < n; i++) {
+		const struct env_figure *f = &e->fig[slot[i]];
+		double p[3];
+		if (f->behave) {
+			snprintf(err, errlen, "%s behaves: its behaviours hold its posture (behave %s off "
+				 "first)", f->name, f->name);
+			return -1;
+		}
+		if (family_place(f->model, f->state, p) < 0 || model_find_segment(f->model, "pelvis") < 0) {
+			snprintf(err, errlen, "%s has no feet's balance sites or pelvis to stand it by",
+				 f->name);
+			return -1;
+		}
+		for (int j = 0; j < fm->njnt; j++) {
+			int k = model_find_joint(f->model, fm->jnt_name[j]);
+			if (k < 0 || f->model->jnt_ndof[k] != fm->jnt_ndof[j]) {
+				snprintf(err, errlen, "%s has no joint %s like %s's", f->name, fm->jnt_name[j],
+					 e->fig[from].name);
+				return -1;
+			}
+		}
+	}
+	for (int i = 0; i < n; i++) {
+		if (slot[i] == from)
+			continue;
+		struct env_figure *f = &e->fig[slot[i]];
+		double was[3], now[3], face = heading(f->model, f->state);
+		family_place(f->model, f->state, was);
+		for (int j = 0; j < fm->njnt; j++) {
+			int k = model_find_joint(f->model, fm->jnt_name[j]);
+			memcpy(&f->state->q[f->model->jnt_dof0[k]], &q[fm->jnt_dof0[j]],
+			       sizeof *q * (size_t)fm->jnt_ndof[j]);
+		}
+		kin_update(f->model, f->state);
+		family_place(f->model, f->state, now);
+		move_figure(f, now, was, face - heading(f->model, f->state));
+	}
+	return 0;
+}
+
 void
 family_describe(const struct env *e, int fig, char *dest, size_t len)
 {

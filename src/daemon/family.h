@@ -68,6 +68,15 @@ int family_arrange(struct env *e, const int *slot, const struct pick_model *cons
 		   int sel, int row, const double h[3], double spacing, double *used, char *err,
 		   size_t errlen);
 
+/*
+ * The family posed alike: each of the n members slot[0..n-1] but slot
+ * `from` takes from's joint values, joint by joint by name, and stands
+ * where it stood (its feet's midpoint), facing as it faced, on the floor.
+ * A behaving member, or one without a joint of from's, is refused.
+ * Returns 0, or -1 with err and nothing changed.
+ */
+int family_pose_alike(struct env *e, const int *slot, int n, int from, char *err, size_t errlen);
+
 /* a human's feet's balance sites' midpoint (world) into dest: 0, or -1 without those sites */
 int family_place(const struct model *m, const struct state *s, double dest[3]);
 

@@ -63,6 +63,7 @@ static const struct group_key group_table[] = {
 	{ "get", "balance", G_POSTURE },
 	{ "apply", "posture", G_POSTURE },
 	{ "mirror", "posture", G_POSTURE },
+	{ "pose", "family", G_POSTURE },
 
 	{ "manipulate", NULL, G_MANIPULATE },
 	{ "drag", "", G_MANIPULATE },

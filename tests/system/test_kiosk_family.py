@@ -1,6 +1,7 @@
 """A family of manikins at the kiosk (`show family`): side by side in a row along a view's
 horizontal, or overlaid with the others drawn as translucent ghosts the mouse cannot pick;
-the status line names the selected manikin and where its size comes from.
+posed alike (`pose family`); the status line names the selected manikin and where its size
+comes from.
 
 The references are geometry and the pixels themselves: a row's places are the spacing
 apart along the camera's level x axis, computed here from the view's eye and target; the
@@ -287,6 +288,55 @@ def test_the_status_line_names_the_selected_manikin(daemon):
         c.request("input key KEY_PAGEDOWN up")
         assert "no family shown" in k["message"]
         assert k["figure"]["name"] == "f_2"  # the last mode's
+
+
+def heading(c, fig):
+    """the pelvis's forward (+z) axis about the vertical, radians"""
+    r = c.request(f"get site {fig} pelvis.root")["rotation"]
+    return math.atan2(r[2], r[8])
+
+
+def test_a_family_posed_alike_keeps_each_place(daemon):
+    with daemon.client() as c:
+        c.request("add view main width=640 height=360 eye=0,1.4,6 target=0,0.9,0")
+        c.request("load family f sex=female n=4")
+        names = members(c, "f")
+        c.request("show family f row select=f_2")
+        c.request("set location f_4 3 0.845 1 yaw=40deg")  # one turned and moved away,
+        c.request("set root f_4 foot_l.balance")  # and rooted at its foot: the pose turns it
+        for line in ("set joint f_2 knee_l 50deg", "set joint f_2 hip_l 0 0 -40deg",
+                     "set joint f_2 shoulder_r 0 70deg 0", "set joint f_2 elbow_r 60deg"):
+            c.request(line)
+        at = {n: place(c, n) for n in names}
+        face = {n: heading(c, n) for n in names}
+        before = {n: c.request(f"get posture {n}") for n in names}
+        r = c.request("pose family f")  # like the selected one
+        assert r["like"] == "f_2" and r["figures"] == [n for n in names if n != "f_2"]
+        want = c.request("get posture f_2")["posture"]
+        for n in names:
+            assert c.request(f"get posture {n}")["posture"] == want, n
+            assert place(c, n)[[0, 2]] == pytest.approx(at[n][[0, 2]], abs=1e-9), n
+            assert heading(c, n) == pytest.approx(face[n], abs=1e-9), n
+            sole = min(c.request(f"get site {n} {s}")["position"][1] for s in SOLE_SITES)
+            assert sole == pytest.approx(0, abs=1e-9), n
+        write_picture(c, "main", "kiosk_family_posed.png")
+        c.request("undo")
+        assert {n: c.request(f"get posture {n}") for n in names} == before
+        # like another human; refusals change nothing
+        c.request("load human as jack")
+        c.request("set joint jack elbow_l 90deg")
+        c.request("pose family f like=jack")
+        assert c.request("get joint f_0 elbow_l")["values"] == c.request(
+            "get joint jack elbow_l")["values"]
+        c.request("behave f_1 on")
+        for line, code in [("pose family nope", "not-found"), ("pose family f like=nobody",
+                                                                 "not-found"),
+                           ("pose family f colour=red", "bad-argument"),
+                           ("pose family f", "bad-argument")]:  # f_1 behaves
+            reply = c.request_reply(line)
+            assert not reply["ok"] and reply["error"]["code"] == code, (line, reply)
+        assert c.request("get joint f_0 elbow_l")["values"] == c.request(
+            "get joint jack elbow_l")["values"]
 
 
 def test_bad_requests_change_nothing(daemon):
