@@ -339,6 +339,14 @@ def test_a_family_posed_alike_keeps_each_place(daemon):
             "get joint jack elbow_l")["values"]
 
 
+def test_tab_completes_a_familys_prefix(daemon):
+    with daemon.client() as c:
+        c.request("load family kin sex=male n=2")
+        type_text(c, "show family ki")
+        press(c, "KEY_TAB")  # kin, kin_0, kin_1, kin_2: their common part
+        assert c.request("get kiosk")["line"] == "show family kin"
+
+
 def test_bad_requests_change_nothing(daemon):
     with daemon.client() as c:
         c.request("add view main width=320 height=240 eye=0,1.4,5 target=0,0.9,0")
