@@ -2,7 +2,8 @@
  * test_kiosk.c - the kiosk's keyboard: keys to the edit line when no mode
  * takes them and Enter hands over the line; in a mode a digit starts a
  * value (Enter applies it, ESC drops it and not the mode) and the mode's
- * own keys pass; the change-view key, undo and redo; keys that belong to
+ * own keys pass; the change-view key, undo and redo, Page Down and Page
+ * Up; keys that belong to
  * change view still move the modifiers; a keyboard unplugged mid-edit
  * loses the typed line and nothing else; the configured layout's names.
  * Expected characters are the US and German layouts' (xkb-data
@@ -97,6 +98,13 @@ test_the_keys_beside_the_line(void **unused)
 	/* in a mode too */
 	assert_int_equal(chord(k, KEY_LEFTCTRL, KEY_Z, KIOSK_KEYS_MODE).kind, KIOSK_UNDO);
 	assert_string_equal(editline_text(kiosk_line(k)), "");
+	/* Page Down and Page Up, the next and the one before, leave what is typed alone */
+	tap(k, KEY_X, KIOSK_KEYS_LINE);
+	assert_int_equal(tap(k, KEY_PAGEDOWN, KIOSK_KEYS_LINE).kind, KIOSK_NEXT);
+	assert_int_equal(tap(k, KEY_PAGEUP, KIOSK_KEYS_LINE).kind, KIOSK_PREVIOUS);
+	assert_string_equal(editline_text(kiosk_line(k)), "x");
+	assert_int_equal(chord(k, KEY_LEFTCTRL, KEY_PAGEDOWN, KIOSK_KEYS_LINE).kind, KIOSK_TAKEN);
+	assert_int_equal(tap(k, KEY_PAGEDOWN, KIOSK_KEYS_MODE).kind, KIOSK_NONE); /* the mode's */
 	kiosk_free(k);
 }
 

@@ -4,7 +4,8 @@
  * spheres and capsules whose first surface point along a ray is known, the
  * hit's normal, distance, face, edge, vertex and nearest site; the
  * bounding boxes never reject a hit that testing every triangle finds
- * (random rays at the posed human); and a pick allocates nothing.
+ * (random rays at the posed human); a pick allocates nothing; and how far
+ * a turned box reaches along directions (pick_extent).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -244,6 +245,37 @@ test_box(void **unused)
 	assert_true(fabs(w[1][1] - w[2][1]) > 0.9); /* the whole side, 1 m long */
 	assert_true(h.face >= 0 && h.face < box.nidx / 3);
 	tess_free(&box);
+	one_free(&o);
+}
+
+/*
+ * How far a figure reaches along a direction: the box of test_box, whose
+ * world half extents are 0.25, 0.5 and 1 along x, y and z about (1.3,
+ * 2.2, 2.9), reaches c.d +- (0.25 |dx| + 0.5 |dy| + |dz|) along unit d.
+ */
+static void
+test_extent(void **unused)
+{
+	(void)unused;
+	struct geom_def g = geom(GEOM_BOX, 2, 1, 0.5);
+	g.pos[0] = 0.1;
+	g.pos[1] = 0.2;
+	g.pos[2] = 0.3;
+	double sa[3] = { 0, 0, 0 }, sb[3] = { 0.1, 0.2, 1 };
+	struct xform root = place(0, 1, 0, 90 * DEG, 1, 2, 3);
+	struct one o;
+	one_make(&o, &g, sa, sb, &root);
+	const double c[3] = { 1.3, 2.2, 2.9 }, half[3] = { 0.25, 0.5, 1 };
+	const double dirs[][3] = { { 1, 0, 0 }, { 0, 0, -1 }, { 0.6, 0, 0.8 }, { -0.48, 0.6, 0.64 } };
+	for (size_t k = 0; k < sizeof dirs / sizeof *dirs; k++) {
+		const double *d = dirs[k];
+		double mid = c[0] * d[0] + c[1] * d[1] + c[2] * d[2];
+		double reach = half[0] * fabs(d[0]) + half[1] * fabs(d[1]) + half[2] * fabs(d[2]);
+		double lo = 0, hi = 0;
+		assert_int_equal(pick_extent(o.pm, o.s, d, &lo, &hi), 1);
+		assert_near(lo, mid - reach, 1e-6);
+		assert_near(hi, mid + reach, 1e-6);
+	}
 	one_free(&o);
 }
 
@@ -645,6 +677,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_triangle_by_hand),
 		cmocka_unit_test(test_box),
+		cmocka_unit_test(test_extent),
 		cmocka_unit_test(test_sphere),
 		cmocka_unit_test(test_capsule),
 		cmocka_unit_test(test_nearest_figure_wins),

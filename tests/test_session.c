@@ -1,4 +1,4 @@
-/* test_session.c - request words, numbers with units, session and posture text */
+/* test_session.c - request words, numbers with units, session and posture text, the family shown */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -7,6 +7,7 @@
 
 #include "test_util.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +15,7 @@
 #include "pose/attach.h"
 #include "pose/behave.h"
 #include "figure/kin.h"
+#include "daemon/family.h"
 #include "daemon/session.h"
 #include "daemon/words.h"
 
@@ -216,6 +218,85 @@ test_attachments_round_trip_and_bad_ones_are_refused(void **unused)
 	env_clear(&a);
 }
 
+/* two members of family f and one other human, f_1 selected among them overlaid */
+static void
+family_env(struct env *e)
+{
+	char err[300];
+	const char *names[] = { "f_0", "f_1", "jack" };
+	for (int i = 0; i < 3; i++) {
+		struct human_def hd = human_default_def(HUMAN_FEMALE);
+		int slot = env_add_figure(e, human_build(&hd, err, sizeof err), names[i], 1, &hd, NULL);
+		assert_int_equal(slot, i);
+		struct env_manikin *mk = &e->fig[slot].manikin;
+		if (i == 2)
+			continue;
+		*mk = (struct env_manikin){ .percentile = NAN, .mahalanobis = i ? 2.5 : 0,
+					    .member = i, .coverage = 0.9 };
+		snprintf(mk->population, sizeof mk->population, "ansur2");
+		snprintf(mk->family, sizeof mk->family, "f");
+		mk->given[population_column("stature")] = 1;
+	}
+	e->show = (struct env_show){ .arrange = ENV_SHOW_OVERLAY };
+	snprintf(e->show.family, sizeof e->show.family, "f");
+	snprintf(e->show.selected, sizeof e->show.selected, "f_1");
+}
+
+/* the family shown at the kiosk round-trips with its ghosts; a bad statement is refused whole */
+static void
+test_a_shown_family_round_trips_and_bad_ones_are_refused(void **unused)
+{
+	(void)unused;
+	static struct env a, b;
+	env_init(&a);
+	env_init(&b);
+	family_env(&a);
+	assert_int_equal(family_is_ghost(&a, 0, -1), 1);
+	assert_int_equal(family_is_ghost(&a, 0, 0), 0); /* the one a mode is on is drawn as it is */
+	assert_int_equal(family_is_ghost(&a, 1, -1), 0);
+	assert_int_equal(family_is_ghost(&a, 2, -1), 0);
+	size_t la, lb;
+	char *ta = session_to_string(&a, &la), *tb, err[300];
+	assert_non_null(strstr(ta, "\nshow family f overlay select=f_1 spacing=0\nend\n"));
+	assert_int_equal(session_read(ta, la, ".", NULL, &b, err, sizeof err), 0);
+	assert_int_equal(b.show.arrange, ENV_SHOW_OVERLAY);
+	assert_int_equal(family_selected(&b), 1);
+	assert_int_equal(family_is_ghost(&b, 0, -1), 1);
+	tb = session_to_string(&b, &lb);
+	assert_int_equal(la, lb);
+	assert_memory_equal(ta, tb, la);
+	free(tb);
+	env_clear(&b);
+	const char *breaks[][2] = { { "select=f_1", "select=jack" }, { "select=f_1", "select=nobody" },
+				    { "overlay select", "sideways select" }, { "spacing=0", "spacing=-1" },
+				    { "show family f", "show family g" }, { "show family", "show families" },
+				    { " spacing=0", "" } };
+	for (size_t i = 0; i < sizeof breaks / sizeof *breaks; i++) {
+		char *t = malloc(la + 16), *at = strstr(ta, breaks[i][0]);
+		assert_non_null(at);
+		size_t head = (size_t)(at - ta), ol = strlen(breaks[i][0]);
+		memcpy(t, ta, head);
+		strcpy(t + head, breaks[i][1]);
+		strcat(t, ta + head + ol);
+		env_init(&b);
+		assert_int_equal(session_read(t, strlen(t), ".", NULL, &b, err, sizeof err), -1);
+		assert_int_equal(env_count(&b), 0);
+		assert_int_equal(b.show.arrange, ENV_SHOW_OFF);
+		free(t);
+	}
+	free(ta);
+	/* the selected one unloaded: the first member left is; none left: nothing is shown */
+	env_remove_figure(&a, 1);
+	assert_int_equal(family_selected(&a), 0);
+	assert_int_equal(family_is_ghost(&a, 0, -1), 0);
+	env_remove_figure(&a, 0);
+	assert_int_equal(family_selected(&a), -1);
+	ta = session_to_string(&a, &la);
+	assert_null(strstr(ta, "\nshow "));
+	free(ta);
+	env_clear(&a);
+}
+
 static void
 test_bad_sessions_load_nothing(void **unused)
 {
@@ -390,6 +471,7 @@ main(void)
 		cmocka_unit_test(test_session_round_trip_is_exact),
 		cmocka_unit_test(test_view_field_of_view),
 		cmocka_unit_test(test_attachments_round_trip_and_bad_ones_are_refused),
+		cmocka_unit_test(test_a_shown_family_round_trips_and_bad_ones_are_refused),
 		cmocka_unit_test(test_bad_sessions_load_nothing),
 		cmocka_unit_test(test_posture_file_applies_by_name_and_checks_first),
 		cmocka_unit_test(test_session_from_before_the_landmarks_loads),

@@ -199,6 +199,7 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	const char *msg;
 	memset(out, 0, sizeof *out);
 	daemon_text_clear(&d->file_read); /* the last command's, journaled by now */
+	d->journal_as[0] = '\0';
 	if (len && line[len - 1] == '\r')
 		len--;
 	out->reply = 1;
@@ -250,7 +251,8 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	char *before = NULL;
 	size_t before_len = 0;
 	/* the daemon's own lines inside a step (change view's camera) are part of its one undo */
-	int checkpoint = (e->flags & CMD_MUTATES) && e->fn != cmd_undo && e->fn != cmd_redo &&
+	int checkpoint = (e->flags & CMD_MUTATES) && !(e->flags & CMD_NO_UNDO) && e->fn != cmd_undo &&
+			 e->fn != cmd_redo &&
 			 !(client == DAEMON_CLIENT_JOURNAL && d->step.open);
 	if (checkpoint && !(before = session_to_string(&d->env, &before_len))) {
 		out->json = dump_reply(0, w.tag, NULL, "internal", "out of memory");

@@ -15,6 +15,7 @@ enum cmd_flags {
 	CMD_MUTATES = 1 << 0,
 	CMD_FILE = 1 << 1,
 	CMD_SLOW = 1 << 2,
+	CMD_NO_UNDO = 1 << 3, /* journaled, not an undo step (the daemon's data: populations) */
 };
 
 /* the outcome of one request */

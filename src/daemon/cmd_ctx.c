@@ -13,6 +13,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "daemon/statefile.h"
 #include "pose/attach.h"
 
 int
@@ -174,4 +175,79 @@ cmd_attachments(const struct env *e, int fig)
 		json_array_append_new(list, j);
 	}
 	return list;
+}
+
+/* "as NAME" among the arguments; returns the name, NULL when absent, or sets an error */
+const char *
+cmd_as_name(struct cmd_ctx *c, int *bad)
+{
+	*bad = 0;
+	for (int i = 0; i < c->argc; i++) {
+		if (strcmp(c->argv[i], "as"))
+			continue;
+		if (i + 1 >= c->argc || !words_is_name(c->argv[i + 1])) {
+			*bad = 1;
+			cmd_fail(c, "bad-argument", "'as' takes a name: letters, digits, '_'");
+			return NULL;
+		}
+		return c->argv[i + 1];
+	}
+	return NULL;
+}
+
+int
+cmd_added(struct cmd_ctx *c, int slot, const char *name)
+{
+	if (slot == ENV_EXISTS)
+		return cmd_fail(c, "exists", "a figure named '%s' exists", name ? name : "");
+	if (slot < 0)
+		return cmd_fail(c, "limit", "the environment holds %d figures at most", ENV_MAX_FIGURES);
+	char id[32];
+	env_figure_id(&c->d->env, slot, id);
+	json_object_set_new(c->result, "figure", json_string(id));
+	json_object_set_new(c->result, "name", json_string(c->d->env.fig[slot].name));
+	return 0;
+}
+
+/*
+ * A state file's text (the caller frees it): from the disk, or on recovery
+ * the text the journal recorded when the command first ran, or in a replay
+ * what the recording kept (d->read_state: the tape records each read and
+ * how it failed, and answers them in a replay, whose state directory holds
+ * none of the files). A copy is kept for the journal (daemon.h, file_read).
+ */
+char *
+cmd_read_file(struct cmd_ctx *c, const char *rel, size_t *len)
+{
+	struct daemon *d = c->d;
+	char path[4096];
+	char *text = d->file_given.text;
+	*len = d->file_given.len;
+	d->file_given.text = NULL;
+	if (!text) {
+		if (cmd_path_words(c, rel) < 0)
+			return NULL;
+		const char *at = NULL; /* a replay's reads need no path: the recording answers */
+		if (!d->files_read_only) {
+			if (cmd_path(c, rel, 0, path, sizeof path) < 0) {
+				errno = !strcmp(c->code, "denied") ? EACCES : ENOENT;
+				if (d->read_state)
+					d->read_state(d, NULL, len); /* recorded as failed */
+				return NULL;
+			}
+			at = path;
+		}
+		text = d->read_state ? d->read_state(d, at, len) : statefile_read(at, len);
+		if (!text) {
+			cmd_fail(c, errno == ENOENT ? "not-found" : errno == EACCES ? "denied" : "bad-file",
+				 "%.60s: %s", rel, strerror(errno));
+			return NULL;
+		}
+	}
+	daemon_text_clear(&d->file_read);
+	if ((d->file_read.text = malloc(*len + 1))) {
+		memcpy(d->file_read.text, text, *len + 1);
+		d->file_read.len = *len;
+	}
+	return text;
 }

@@ -43,6 +43,17 @@ int cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size
 /* its checks of the words alone (relative, no ".."), which need no disk: 0, or -1 with the error set */
 int cmd_path_words(struct cmd_ctx *c, const char *rel);
 json_t *cmd_vec(const double *v, int n);
+/* "as NAME" among the arguments: the name, NULL when absent; *bad with the error set */
+const char *cmd_as_name(struct cmd_ctx *c, int *bad);
+/* a figure added to slot (or env_add_figure's error): its id and name in the reply; 0 or -1 */
+int cmd_added(struct cmd_ctx *c, int slot, const char *name);
+/*
+ * A state file's text, malloc'd (the caller frees it): from the disk, or on
+ * recovery the text the journal recorded when the command first ran, or in
+ * a replay what the recording kept; a copy is kept for the journal
+ * (daemon.h, file_read). NULL with the error set.
+ */
+char *cmd_read_file(struct cmd_ctx *c, const char *rel, size_t *len);
 /* a figure's hands and feet held to other figures, as a list */
 json_t *cmd_attachments(const struct env *e, int fig);
 /* "rot=AXIS,ANGLE" (AXIS x, y, z or X,Y,Z) or "yaw=ANGLE" among the args; *given 0 when neither */

@@ -3,83 +3,15 @@
 #include <string.h>
 
 #include "daemon/cmd_ctx.h"
+#include "daemon/manikin.h"
 #include "figure/figure.h"
 #include "figure/kin.h"
-
-/* "as NAME" among the arguments; returns the name, NULL when absent, or sets an error */
-static const char *
-as_name(struct cmd_ctx *c, int *bad)
-{
-	*bad = 0;
-	for (int i = 0; i < c->argc; i++) {
-		if (strcmp(c->argv[i], "as"))
-			continue;
-		if (i + 1 >= c->argc || !words_is_name(c->argv[i + 1])) {
-			*bad = 1;
-			cmd_fail(c, "bad-argument", "'as' takes a name: letters, digits, '_'");
-			return NULL;
-		}
-		return c->argv[i + 1];
-	}
-	return NULL;
-}
-
-static int
-added(struct cmd_ctx *c, int slot, const char *name)
-{
-	if (slot == ENV_EXISTS)
-		return cmd_fail(c, "exists", "a figure named '%s' exists", name ? name : "");
-	if (slot < 0)
-		return cmd_fail(c, "limit", "the environment holds %d figures at most", ENV_MAX_FIGURES);
-	char id[32];
-	env_figure_id(&c->d->env, slot, id);
-	json_object_set_new(c->result, "figure", json_string(id));
-	json_object_set_new(c->result, "name", json_string(c->d->env.fig[slot].name));
-	return 0;
-}
-
-int
-cmd_load_human(struct cmd_ctx *c)
-{
-	int bad;
-	const char *name = as_name(c, &bad);
-	if (bad)
-		return -1;
-	struct human_def hd = human_default_def(HUMAN_MALE);
-	const char *sex = cmd_key(c, "sex");
-	if (sex) {
-		if (strcmp(sex, "male") && strcmp(sex, "female"))
-			return cmd_fail(c, "bad-argument", "sex is male or female");
-		hd = human_default_def(!strcmp(sex, "male") ? HUMAN_MALE : HUMAN_FEMALE);
-	}
-	const char *st = cmd_key(c, "stature"), *ms = cmd_key(c, "mass");
-	if (st && words_number(st, UNIT_LENGTH, &hd.stature) < 0)
-		return cmd_fail(c, "bad-number", "stature: a length such as 1.75 or 175cm");
-	if (ms && words_number(ms, UNIT_NONE, &hd.mass) < 0)
-		return cmd_fail(c, "bad-number", "mass: kilograms, a number");
-	/* every argument must be one of ours */
-	for (int i = 0; i < c->argc; i++) {
-		const char *a = c->argv[i];
-		if (!strcmp(a, "as")) {
-			i++;
-			continue;
-		}
-		if (!words_is_key(a, "sex") && !words_is_key(a, "stature") && !words_is_key(a, "mass"))
-			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", a);
-	}
-	char err[256];
-	struct model *m = human_build(&hd, err, sizeof err);
-	if (!m)
-		return cmd_fail(c, "bad-argument", "%s", err);
-	int slot = env_add_figure(&c->d->env, m, name, 1, &hd, NULL);
-	return added(c, slot, name);
-}
 
 int
 cmd_load_figure(struct cmd_ctx *c)
 {
 	int bad;
-	const char *name = as_name(c, &bad);
+	const char *name = cmd_as_name(c, &bad);
 	if (bad)
 		return -1;
 	if (c->argc != 1 && c->argc != 3)
@@ -104,7 +36,7 @@ cmd_load_figure(struct cmd_ctx *c)
 		return cmd_fail(c, "bad-file", "%s", rest ? rest : err);
 	}
 	int slot = env_add_figure(&c->d->env, m, name, 0, NULL, c->argv[0]);
-	return added(c, slot, name);
+	return cmd_added(c, slot, name);
 }
 
 int
@@ -135,6 +67,10 @@ cmd_list_figures(struct cmd_ctx *c)
 		json_object_set_new(o, "dofs", json_integer(f->model->ndof));
 		json_object_set_new(o, "root", json_string(model_site_fullname(f->model,
 			f->state->root_site, root, sizeof root)));
+		if (f->is_human)
+			manikin_json(f, o);
+		if (daemon_is_ghost(c->d, i)) /* a family overlaid: drawn translucent, never picked */
+			json_object_set_new(o, "ghost", json_true());
 		json_array_append_new(list, o);
 	}
 	json_object_set_new(c->result, "figures", list);

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "daemon/cmd_ctx.h"
+#include "daemon/family.h"
 
 #define INPUT_MOTION_MAX 1e6 /* counts: more in one line is a mistake, not a mouse */
 #define INPUT_WHEEL_MAX 1000 /* detents */
@@ -309,6 +310,17 @@ cmd_get_kiosk(struct cmd_ctx *c)
 			    json_string(ia && ia->mode != INTERACT_NONE ? interact_name(ia) : "none"));
 	json_object_set_new(c->result, "step", json_boolean(c->d->step.open));
 	json_object_set_new(c->result, "attract", json_boolean(c->d->attracting));
+	/* the figure the status line names, in its words, and the line as last drawn */
+	int fig = daemon_kiosk_figure(c->d);
+	char who[160];
+	if (fig >= 0)
+		family_describe(&c->d->env, fig, who, sizeof who);
+	json_object_set_new(c->result, "figure",
+			    fig >= 0 ? json_pack("{ssss}", "name", c->d->env.fig[fig].name, "says", who)
+				     : json_null());
+	json_object_set_new(c->result, "status",
+			    c->d->status_line[0] ? json_string(c->d->status_line) : json_null());
+	json_object_set_new(c->result, "message", json_string(c->d->message));
 	if (!k)
 		return 0;
 	const struct editline *el = kiosk_line(k);

@@ -36,55 +36,12 @@ cmd_save_posture(struct cmd_ctx *c)
 	return 0;
 }
 
-/*
- * A state file's text (the caller frees it): from the disk, or on recovery
- * the text the journal recorded when the command first ran, or in a replay
- * what the recording kept (d->read_state: the tape records each read and
- * how it failed, and answers them in a replay, whose state directory holds
- * none of the files). A copy is kept for the journal (daemon.h, file_read).
- */
-static char *
-read_state_file(struct cmd_ctx *c, const char *rel, size_t *len)
-{
-	struct daemon *d = c->d;
-	char path[4096];
-	char *text = d->file_given.text;
-	*len = d->file_given.len;
-	d->file_given.text = NULL;
-	if (!text) {
-		if (cmd_path_words(c, rel) < 0)
-			return NULL;
-		const char *at = NULL; /* a replay's reads need no path: the recording answers */
-		if (!d->files_read_only) {
-			if (cmd_path(c, rel, 0, path, sizeof path) < 0) {
-				errno = !strcmp(c->code, "denied") ? EACCES : ENOENT;
-				if (d->read_state)
-					d->read_state(d, NULL, len); /* recorded as failed */
-				return NULL;
-			}
-			at = path;
-		}
-		text = d->read_state ? d->read_state(d, at, len) : statefile_read(at, len);
-		if (!text) {
-			cmd_fail(c, errno == ENOENT ? "not-found" : errno == EACCES ? "denied" : "bad-file",
-				 "%.60s: %s", rel, strerror(errno));
-			return NULL;
-		}
-	}
-	daemon_text_clear(&d->file_read);
-	if ((d->file_read.text = malloc(*len + 1))) {
-		memcpy(d->file_read.text, text, *len + 1);
-		d->file_read.len = *len;
-	}
-	return text;
-}
-
 int
 cmd_load_posture(struct cmd_ctx *c)
 {
 	int fig = cmd_figure(c, c->argv[0]);
 	size_t len;
-	char *text = fig < 0 ? NULL : read_state_file(c, c->argv[1], &len);
+	char *text = fig < 0 ? NULL : cmd_read_file(c, c->argv[1], &len);
 	if (!text)
 		return -1;
 	char err[300];
@@ -128,7 +85,7 @@ int
 cmd_load_session(struct cmd_ctx *c)
 {
 	size_t len;
-	char *text = read_state_file(c, c->argv[0], &len);
+	char *text = cmd_read_file(c, c->argv[0], &len);
 	if (!text)
 		return -1;
 	int rc = replace_env(c, text, len, c->argv[0]);

@@ -105,8 +105,10 @@ complete_words(void *user, const char *const *words, int nwords, const char *pre
 			}
 		if (!objects) {
 			for (int i = 0; i < ENV_MAX_FIGURES; i++)
-				if (e->fig[i].gen)
+				if (e->fig[i].gen) {
 					offer(&f, e->fig[i].name);
+					offer(&f, e->fig[i].manikin.family); /* a family's prefix */
+				}
 			for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++)
 				if (e->con[i].gen)
 					offer(&f, e->con[i].name);

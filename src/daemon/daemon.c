@@ -1,10 +1,11 @@
-/* daemon.c - undo and redo checkpoints, the kiosk's steps, the pick models */
+/* daemon.c - undo and redo checkpoints, the kiosk's steps and figure, the pick models */
 #include "daemon/daemon.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "daemon/family.h"
 #include "daemon/session.h"
 
 void
@@ -41,6 +42,28 @@ daemon_kiosk_view(const struct daemon *d)
 		if (d->env.view[v].used)
 			return v;
 	return -1;
+}
+
+int
+daemon_kiosk_figure(const struct daemon *d)
+{
+	const struct interact *ia = d->interact;
+	if (ia && ia->mode != INTERACT_NONE && ia->fig >= 0)
+		return ia->fig;
+	int sel = family_selected(&d->env);
+	if (sel >= 0)
+		return sel;
+	int k = d->kiosk_fig.fig;
+	if (k >= 0 && k < ENV_MAX_FIGURES && d->env.fig[k].gen && d->env.fig[k].gen == d->kiosk_fig.gen)
+		return k;
+	return -1;
+}
+
+int
+daemon_is_ghost(const struct daemon *d, int fig)
+{
+	const struct interact *ia = d->interact;
+	return family_is_ghost(&d->env, fig, ia && ia->mode != INTERACT_NONE ? ia->fig : -1);
 }
 
 int
@@ -181,7 +204,7 @@ daemon_pick(struct daemon *d, const struct ray *r, double tmin, int skip, struct
 	struct pick_target t[ENV_MAX_FIGURES];
 	int slot[ENV_MAX_FIGURES], n = 0;
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
-		if (!d->env.fig[i].gen || i == skip)
+		if (!d->env.fig[i].gen || i == skip || daemon_is_ghost(d, i))
 			continue;
 		const struct pick_model *pm = daemon_pick_model(d, i);
 		if (!pm)

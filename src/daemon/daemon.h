@@ -19,6 +19,7 @@
 #include "interact/prompt.h"
 #include "interact/pick.h"
 #include "pose/env.h"
+#include "daemon/populations.h"
 
 struct kms_times_summary; /* draw/kms_pick.h */
 
@@ -99,6 +100,7 @@ enum sub_kind {
 
 struct daemon {
 	struct env env;
+	struct populations pops; /* the populations loaded (load population), besides ansur2 */
 	char state_dir[4096];
 	char library_dir[4096]; /* shipped figure files, named "lib:NAME"; empty: none */
 	int files_read_only;    /* a replay: its state directory is the recording, read only */
@@ -131,6 +133,14 @@ struct daemon {
 		char *text;
 		size_t len;
 	} file_read, file_given;
+	/*
+	 * The line the journal records for the running command in place of the
+	 * request (journal_command), kept until the next command; "" for the
+	 * request itself. A command whose defaults come from outside the state
+	 * (the view the kiosk's pointer is in) writes them out here, so that
+	 * recovery, which has no pointer, does what was done.
+	 */
+	char journal_as[512];
 	/* the queue from the devices and the socket's input lines to the loop; NULL: none */
 	struct input_queue *input;
 	/*
@@ -163,6 +173,13 @@ struct daemon {
 	/* a command asking for its missing arguments, and what the pointer would pick; NULL: none */
 	const struct prompt *prompt;
 	int hover_fig, hover_seg;
+	/* the figure the last mode was on (fig -1: none yet): the kiosk's figure after it */
+	struct {
+		int fig;
+		uint32_t gen;
+	} kiosk_fig;
+	/* the status line the kiosk's view last showed ("": none drawn yet) */
+	char status_line[160];
 	/* the pop-up menu of commands and the view it is open in; NULL: none */
 	const struct menu *menu;
 	int menu_view;
@@ -196,6 +213,19 @@ void daemon_checkpoints_push(struct checkpoints *c, char *text, size_t len);
  * the edit line shows in it.
  */
 int daemon_kiosk_view(const struct daemon *d);
+
+/*
+ * The kiosk's figure, the one its status line names: the figure a mode is
+ * on while one is; else the shown family's selected member; else the
+ * figure the last mode was on, while it is there; -1: none.
+ */
+int daemon_kiosk_figure(const struct daemon *d);
+
+/*
+ * 1 when figure slot fig is a ghost (family.h): drawn translucent, never
+ * picked. The figure a mode is on is none.
+ */
+int daemon_is_ghost(const struct daemon *d, int fig);
 
 /*
  * Replaces the environment with the session in text; nothing changes on
@@ -232,9 +262,9 @@ int daemon_step_abandon(struct daemon *d, char *err, size_t errlen);
 const struct pick_model *daemon_pick_model(struct daemon *d, int fig);
 
 /*
- * The nearest hit of r on every figure but slot skip (-1: none skipped),
- * not nearer than tmin: 1 with dest and the figure's slot in *fig, 0 on a
- * miss, -1 out of memory.
+ * The nearest hit of r on every figure but slot skip (-1: none skipped)
+ * and the ghosts, not nearer than tmin: 1 with dest and the figure's slot
+ * in *fig, 0 on a miss, -1 out of memory.
  */
 int daemon_pick(struct daemon *d, const struct ray *r, double tmin, int skip, struct pick_hit *dest,
 		int *fig);

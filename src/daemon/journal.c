@@ -47,6 +47,8 @@ journal_state_write(const struct daemon *d, FILE *f)
 	session_write(&d->env, f);
 	write_checkpoints(f, "undo", &d->undo);
 	write_checkpoints(f, "redo", &d->redo);
+	if (populations_write(&d->pops, f) < 0)
+		return -1;
 	return ferror(f) ? -1 : 0;
 }
 
@@ -123,8 +125,16 @@ journal_state_read(struct daemon *d, const char *body, size_t len, char *err, si
 			 sizeof msg) < 0)
 		return say(err, errlen, "%s", msg);
 	const char *p = read_checkpoints(stop, end, "undo", &d->undo);
-	if (!p || !read_checkpoints(p, end, "redo", &d->redo))
+	if (!p || !(p = read_checkpoints(p, end, "redo", &d->redo)))
 		return say(err, errlen, "bad undo history");
+	/* the populations loaded, when the state has them (older ones do not: none) */
+	size_t used = 0;
+	if (p < end && !strncmp(p, "populations ", 12)) {
+		if (populations_read(&d->pops, p, (size_t)(end - p), &used, msg, sizeof msg) < 0)
+			return say(err, errlen, "%s", msg);
+	} else {
+		populations_clear(&d->pops);
+	}
 	return 0;
 }
 
@@ -365,10 +375,18 @@ journal_command(struct journal *j, const struct daemon *d, const char *line, siz
 		if (rc < 0)
 			return -1;
 	}
+	/* the command as it is to be done again, its defaults written out (daemon.h) */
+	if (d->journal_as[0]) {
+		line = d->journal_as;
+		len = strlen(line);
+	}
 	if (record(j, 'C', line, len) < 0)
 		return -1;
 	/* replaying the command reproduces its postures: no P records for them */
 	note_postures(j, d);
+	/* a big file read (a population) goes into a snapshot at once: the journal stays small */
+	if (d->file_read.text && d->file_read.len > JOURNAL_FOLD_BYTES)
+		return journal_snapshot(j, d, 1);
 	return 0;
 }
 

@@ -24,6 +24,12 @@
 #include "daemon/daemon.h"
 
 #define JOURNAL_SNAPSHOT_RECORDS 2000 /* snapshot after this many records */
+/*
+ * A command that read a file bigger than this (a population's CSV) is
+ * followed by a snapshot at once, so the journal, read whole on recovery
+ * (statefile.h's limit), never holds more than one such file.
+ */
+#define JOURNAL_FOLD_BYTES (256u << 10)
 
 struct journal {
 	int fd;

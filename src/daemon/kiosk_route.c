@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "daemon/cmd.h"
+#include "daemon/family.h"
 #include "draw/tiles.h"
 #include "interact/mouse_line.h"
 #include "interact/pick.h"
@@ -228,6 +229,57 @@ drive_menu(struct modes *M, const struct input_event_rec *e)
 	return 1;
 }
 
+/* member fig of the family shown made the selected one: the line run as if typed */
+static void
+select_member(struct modes *M, int fig)
+{
+	const struct env_show *sh = &M->d->env.show;
+	char line[256];
+	int row = sh->arrange == ENV_SHOW_ROW;
+	int k = snprintf(line, sizeof line, "show family %s %s select=%s", sh->family,
+			 row ? "row" : "overlay", M->d->env.fig[fig].name);
+	if (row) /* the row's spacing kept, not its default taken again */
+		snprintf(line + k, sizeof line - (size_t)k, " spacing=%.17g", sh->spacing);
+	M->run_typed(M->ctx, line);
+}
+
+/* Page Down (dir 1), Page Up (-1): the next or previous member of the family shown, around */
+static void
+step_member(struct modes *M, int dir)
+{
+	const struct env *e = &M->d->env;
+	int sel = family_selected(e);
+	if (sel < 0) {
+		snprintf(M->d->message, sizeof M->d->message,
+			 "Page Down, Page Up: no family shown (show family PREFIX row|overlay)");
+		return;
+	}
+	int slot[ENV_MAX_FIGURES], n = family_members(e, e->show.family, slot), i = 0;
+	while (slot[i] != sel)
+		i++;
+	select_member(M, slot[(i + dir + n) % n]);
+}
+
+/*
+ * A left click on a member of the family shown (not a ghost: those are
+ * not picked), with no mode, prompt or menu, makes it the selected one.
+ * Returns 1 when the event was that.
+ */
+static int
+drive_select(struct modes *M, const struct input_event_rec *e)
+{
+	struct pick_hit h;
+	int fig;
+	if (e->kind != INPUT_BUTTON || e->code != BTN_LEFT || e->value != 1 ||
+	    M->interact.mode != INTERACT_NONE || prompt_asking(&M->prompt) || modes_viewing(M) ||
+	    family_selected(&M->d->env) < 0 || !under_pointer(M, &h, &fig) ||
+	    !family_is_member(&M->d->env, M->d->env.show.family, fig) ||
+	    fig == family_selected(&M->d->env))
+		return 0;
+	select_member(M, fig);
+	return 1;
+}
+
 /*
  * The keyboard's events go to the kiosk first (the edit line, a value
  * typed in a mode, undo and redo); 1 when it took the event.
@@ -260,6 +312,10 @@ drive_kiosk(struct modes *M, const struct input_event_rec *e)
 		break;
 	case KIOSK_CHANGE_VIEW:
 		enter_change_view(M, e);
+		break;
+	case KIOSK_NEXT:
+	case KIOSK_PREVIOUS:
+		step_member(M, a.kind == KIOSK_NEXT ? 1 : -1);
 		break;
 	}
 	M->scene->dirty = 1;
@@ -315,7 +371,7 @@ kiosk_route_input(struct modes *M, const struct input_event_rec *in, long px, lo
 	screen_pointer(M, &ev, px, py);
 	modes_track_pointer(M, e, px, py);
 	enum interact_mode was = M->interact.mode;
-	if (!drive_menu(M, e) && !drive_prompt(M, e) && !drive_kiosk(M, e) &&
+	if (!drive_menu(M, e) && !drive_prompt(M, e) && !drive_select(M, e) && !drive_kiosk(M, e) &&
 	    !modes_view_input(M, e, px, py))
 		modes_mode_input(M, e, px, py);
 	if (was != INTERACT_NONE && M->interact.mode == INTERACT_NONE && M->kiosk)

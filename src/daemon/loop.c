@@ -790,9 +790,12 @@ loop_teardown(struct loop *L)
 	server_close(&L->srv);
 	journal_close(&L->j);
 	env_clear(&L->d.env);
+	populations_clear(&L->d.pops);
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
 	daemon_picks_free(&L->d);
+	daemon_text_clear(&L->d.file_read); /* the last command's file, if it read one */
+	daemon_text_clear(&L->d.file_given);
 	kiosk_free(L->modes.kiosk);
 	input_devs_close_all(&L->devs, loop_real_now(), &L->input);
 	hotplug_close(&L->hotplug);

@@ -37,10 +37,11 @@ is_question(const char *line, size_t len)
 	return 0;
 }
 
-/* the environment emptied, the undo history with it */
+/* the environment emptied, the undo history and the loaded populations with it */
 static void
 clear_state(struct daemon *d)
 {
+	populations_clear(&d->pops);
 	env_clear(&d->env);
 	env_init(&d->env);
 	daemon_checkpoints_clear(&d->undo);

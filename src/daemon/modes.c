@@ -35,6 +35,7 @@ modes_init(struct modes *M, struct daemon *d, struct scene *scene,
 	d->prompt = &M->prompt;
 	d->hover_fig = d->hover_seg = -1;
 	d->pointer_view = -1;
+	d->kiosk_fig.fig = -1;
 	struct viewctl_gains gains = viewctl_default_gains();
 	for (int v = 0; v < ENV_MAX_VIEWS; v++)
 		viewctl_init(&M->viewctl[v], &gains);
@@ -606,6 +607,9 @@ modes_sync(struct modes *M)
 	}
 	ia->model = f->model;
 	ia->state = f->state;
+	/* the kiosk's figure once the mode is over (daemon_kiosk_figure) */
+	M->d->kiosk_fig.fig = ia->fig;
+	M->d->kiosk_fig.gen = f->gen;
 }
 
 int

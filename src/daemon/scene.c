@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "daemon/family.h"
 #include "draw/sink.h"
 #include "draw/tiles.h"
 #include "interact/menu_draw.h"
@@ -127,7 +128,8 @@ scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3], const
 	view_begin(sc->dl, &cam, HEMI_N, HEMI_N);
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
 		struct env_figure *f = &e->fig[i];
-		if (!f->gen || (i == skip && !skip_seg))
+		/* a ghost hides nothing: it is drawn see-through */
+		if (!f->gen || (i == skip && !skip_seg) || daemon_is_ghost(d, i))
 			continue;
 		figure_meshes(sc, f, i);
 		view_add_figure_ids_except(sc->dl, f->model, f->state, sc->mesh_base[i], i,
@@ -241,16 +243,25 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 	const struct env_view *vw = &d->env.view[v];
 	const struct interact *ia = d->interact;
 	int manipulating = ia && ia->mode != INTERACT_NONE && ia->view == v;
-	char status[VIEW_TEXT_LEN];
-	int caret = v == daemon_kiosk_view(d) ? edit_line(d, width, status, sizeof status) : -1;
+	char status[VIEW_TEXT_LEN], who[80] = ""; /* who: room left for the frame's numbers */
+	int kiosk = v == daemon_kiosk_view(d), caret = kiosk ? edit_line(d, width, status, sizeof status)
+							  : -1;
+	/* the kiosk's figure, and where its size comes from, after the view's name */
+	int fig = daemon_kiosk_figure(d);
+	if (fig >= 0) {
+		memcpy(who, "   ", 3);
+		family_describe(&d->env, fig, who + 3, sizeof who - 3);
+	}
 	if (caret < 0 && sc->replaying) /* the live timings are not the replay's: pictures stay alike */
-		snprintf(status, sizeof status, "%s   frame %llu   replay", vw->name,
+		snprintf(status, sizeof status, "%s%s   frame %llu   replay", vw->name, who,
 			 (unsigned long long)d->stats.frame);
 	else if (caret < 0)
 		snprintf(status, sizeof status,
-			 "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
-			 (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
+			 "%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
+			 who, (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
 			 d->stats.draw_us / 1000);
+	if (kiosk)
+		snprintf(d->status_line, sizeof d->status_line, "%s", status);
 	view_add_status(sc->dl, status, manipulating && ia->message[0] ? ia->message : d->message,
 			caret);
 }
@@ -274,6 +285,11 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 		if (!f->gen)
 			continue;
 		figure_meshes(sc, f, i);
+		if (daemon_is_ghost(d, i)) { /* a family overlaid: the others as ghosts, no icons */
+			view_add_figure_ghost(sc->dl, f->model, f->state, sc->mesh_base[i],
+					      FAMILY_GHOST_ALPHA);
+			continue;
+		}
 		view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
 		int dragged = manipulating && ia->mode == INTERACT_DRAG && ia->fig == i;
 		if (!vw->icons && !dragged)

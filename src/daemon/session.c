@@ -11,6 +11,8 @@
 #include "figure/figure.h"
 #include "figure/human.h"
 #include "figure/kin.h"
+#include "daemon/family.h"
+#include "daemon/manikin.h"
 #include "daemon/words.h"
 
 static const char *const pos_names[] = { "none", "point", "line", "plane" };
@@ -112,11 +114,13 @@ session_write(const struct env *e, FILE *f)
 		const struct env_figure *fg = &e->fig[i];
 		if (!fg->gen)
 			continue;
-		if (fg->is_human)
-			fprintf(f, "figure %s slot=%d gen=%u human stature=%.17g mass=%.17g sex=%s\n",
+		if (fg->is_human) {
+			fprintf(f, "figure %s slot=%d gen=%u human stature=%.17g mass=%.17g sex=%s",
 				fg->name, i, fg->gen, fg->human.stature, fg->human.mass,
 				fg->human.sex == HUMAN_FEMALE ? "female" : "male");
-		else
+			manikin_write_words(fg, f);
+			fprintf(f, "\n");
+		} else
 			fprintf(f, "figure %s slot=%d gen=%u file \"%s\"\n", fg->name, i, fg->gen,
 				fg->path);
 		write_figure_posture(fg, f);
@@ -161,6 +165,11 @@ session_write(const struct env *e, FILE *f)
 			fprintf(f, " %s", e->view[e->layout[i]].name);
 		fprintf(f, "\n");
 	}
+	int sel = family_selected(e);
+	if (sel >= 0) /* a family shown, with members left */
+		fprintf(f, "show family %s %s select=%s spacing=%.17g\n", e->show.family,
+			e->show.arrange == ENV_SHOW_ROW ? "row" : "overlay", e->fig[sel].name,
+			e->show.spacing);
 	fprintf(f, "end\n");
 	return ferror(f) ? -1 : 0;
 }
@@ -289,6 +298,7 @@ read_figure(struct reader *r, struct env *e, const char *base_dir, const char *l
 	char err[300];
 	struct model *m = NULL;
 	struct human_def hd = human_default_def(HUMAN_MALE);
+	struct env_manikin mk = { .percentile = NAN, .coverage = NAN };
 	int human = !strcmp(w->w[4], "human");
 	const char *path = NULL;
 	if (human) {
@@ -299,6 +309,8 @@ read_figure(struct reader *r, struct env *e, const char *base_dir, const char *l
 		if (words_number(arg(w, 5, "stature") ? arg(w, 5, "stature") : "x", UNIT_LENGTH, &hd.stature) < 0 ||
 		    words_number(arg(w, 5, "mass") ? arg(w, 5, "mass") : "x", UNIT_NONE, &hd.mass) < 0)
 			return fail(r, "a human needs stature= and mass=");
+		if (manikin_read_words(w, 5, &hd, &mk, err, sizeof err) < 0)
+			return fail(r, "figure %s: %s", w->w[1], err);
 		m = human_build(&hd, err, sizeof err);
 	} else if (!strcmp(w->w[4], "file") && w->n == 6) {
 		path = w->w[5];
@@ -323,6 +335,8 @@ read_figure(struct reader *r, struct env *e, const char *base_dir, const char *l
 		memset(&e->fig[got], 0, sizeof e->fig[got]);
 	}
 	e->fig[slot].gen = (uint32_t)gen;
+	if (human)
+		e->fig[slot].manikin = mk;
 	e->next_gen = keep;
 	return 0;
 }
@@ -600,6 +614,39 @@ read_layout(struct reader *r, struct env *e)
 	return 0;
 }
 
+/*
+ * show family PREFIX row|overlay select=FIG spacing=M: the family shown at
+ * the kiosk, its members and the selected one defined above
+ */
+static int
+read_show(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	struct env_show sh = { 0 };
+	const char *sel = NULL, *sp = NULL;
+	for (int i = 4; i < w->n; i++)
+		if (words_is_key(w->w[i], "select"))
+			sel = w->w[i] + 7;
+		else if (words_is_key(w->w[i], "spacing"))
+			sp = w->w[i] + 8;
+	if (w->n != 6 || strcmp(w->w[1], "family") || !sel || !sp || !words_is_name(w->w[2]) ||
+	    words_number(sp, UNIT_NONE, &sh.spacing) < 0 || sh.spacing < 0)
+		return fail(r, "expected: show family PREFIX row|overlay select=FIG spacing=M");
+	if (!strcmp(w->w[3], "row"))
+		sh.arrange = ENV_SHOW_ROW;
+	else if (!strcmp(w->w[3], "overlay"))
+		sh.arrange = ENV_SHOW_OVERLAY;
+	else
+		return fail(r, "show family: row or overlay, not '%s'", w->w[3]);
+	int fig = env_find_figure(e, sel);
+	if (fig < 0 || !family_is_member(e, w->w[2], fig))
+		return fail(r, "show family: %s is no member of family %s defined above", sel, w->w[2]);
+	snprintf(sh.family, sizeof sh.family, "%s", w->w[2]);
+	snprintf(sh.selected, sizeof sh.selected, "%s", sel);
+	e->show = sh;
+	return 0;
+}
+
 int
 session_read(const char *text, size_t len, const char *base_dir, const char *library_dir,
 	     struct env *dest, char *err, size_t errlen)
@@ -642,6 +689,8 @@ session_read(const char *text, size_t len, const char *base_dir, const char *lib
 			ok = read_view(r, dest);
 		else if (!strcmp(kw, "layout"))
 			ok = read_layout(r, dest);
+		else if (!strcmp(kw, "show"))
+			ok = read_show(r, dest);
 		else if (!strcmp(kw, "behave") || !strcmp(kw, "bdef"))
 			ok = read_behave(r, dest);
 		else if (!strcmp(kw, "attach"))
@@ -682,6 +731,8 @@ session_write_posture(const struct env *e, int fig, FILE *f)
 		model_site_fullname(m, s->root_site, site, sizeof site));
 	write_xform(f, &s->root_xf);
 	fprintf(f, "\n");
+	if (fg->is_human)
+		fprintf(f, "support %.17g\n", family_sole_height(m, s));
 	for (int j = 0; j < m->njnt; j++) {
 		if (!m->jnt_ndof[j])
 			continue;
@@ -703,6 +754,7 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 	double *q = malloc(sizeof *q * (size_t)(m->ndof + 1));
 	int rc = -1, got, root = -1;
 	struct xform root_xf;
+	double support = NAN;
 	if (!r || !q) {
 		snprintf(err, errlen, "out of memory");
 		goto out;
@@ -726,6 +778,11 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 			root = model_find_site(m, w->w[1]);
 			if (root < 0 || read_xform(w->w[2], &root_xf) < 0) {
 				fail(r, "no site %s on this figure, or a bad frame", w->w[1]);
+				goto out;
+			}
+		} else if (!strcmp(w->w[0], "support") && w->n == 2) {
+			if (words_number(w->w[1], UNIT_NONE, &support) < 0) {
+				fail(r, "support: a height");
 				goto out;
 			}
 		} else if (!strcmp(w->w[0], "joint") && w->n >= 2) {
@@ -760,6 +817,14 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 	if (root >= 0)
 		state_root_at(m, fg->state, root, &root_xf);
 	kin_update(m, fg->state);
+	/* a human of another size: its feet as high as the file's were (it stands where that one stood) */
+	double shift = fg->is_human && !isnan(support) ? support - family_sole_height(m, fg->state) : 0;
+	if (fabs(shift) > 1e-9) {
+		struct xform at = fg->state->root_xf;
+		at.p[1] += shift;
+		state_root_at(m, fg->state, fg->state->root_site, &at);
+		kin_update(m, fg->state);
+	}
 	rc = 0;
 out:
 	free(r);

@@ -12,8 +12,8 @@
 
 #include "pose/env.h"
 
-#define SESSION_VERSION 1
-#define POSTURE_VERSION 1
+#define SESSION_VERSION 3 /* 2: a human's measures and provenance (manikin.h); 3: the family shown */
+#define POSTURE_VERSION 2 /* 2: a human's support height */
 
 /* writes the whole environment; 0, or -1 on an I/O error */
 int session_write(const struct env *e, FILE *f);
@@ -32,7 +32,11 @@ int session_write_posture(const struct env *e, int fig, FILE *f);
 
 /*
  * Applies a posture file to figure fig: joints by name (all must exist),
- * the root by site name. Checks everything before changing anything.
+ * the root by site name and frame. A human's posture file says how high
+ * its feet were (support: the lowest site of its feet and toes); a human
+ * of another size is then raised or lowered until its feet are as high,
+ * so it stands where the file's figure stood, joint angles as they were.
+ * Checks everything before changing anything.
  */
 int session_read_posture(struct env *e, int fig, const char *text, size_t len, char *err,
 			 size_t errlen);

@@ -204,6 +204,8 @@ line_key(struct kiosk *k, unsigned code, const struct kbd_text_key *key)
 	enum kiosk_action_kind h = history_key(key);
 	if (h != KIOSK_NONE)
 		return act(h, NULL);
+	if ((code == KEY_PAGEDOWN || code == KEY_PAGEUP) && !(key->mods & (KBD_MOD_CTRL | KBD_MOD_ALT)))
+		return act(code == KEY_PAGEDOWN ? KIOSK_NEXT : KIOSK_PREVIOUS, NULL);
 	/* ESC on an empty line is nobody's: the change of view, say, may want it */
 	if (key->ctl == KBD_CTL_ESCAPE && !editline_text(&k->line)[0])
 		return act(KIOSK_NONE, NULL);

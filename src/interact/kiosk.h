@@ -6,7 +6,9 @@
  * axis (`10cm`, `-30deg`: Blender's habit), which Enter applies and ESC
  * drops; every other key is the mode's (V, C, S, ESC, the modifiers).
  * Beside the line: the change-view key (F2 by default: at the edit line V
- * is a letter), undo (Ctrl+Z) and redo (Ctrl+Y, Ctrl+Shift+Z).
+ * is a letter), undo (Ctrl+Z) and redo (Ctrl+Y, Ctrl+Shift+Z), and Page
+ * Down and Page Up, the next and the one before of what the daemon shows
+ * one of (the members of a family).
  *
  * Pure, like the rest of this layer: an event in, an action out; the
  * daemon runs the lines, draws the line and routes the rest. Nothing here
@@ -29,6 +31,8 @@ enum kiosk_action_kind {
 	KIOSK_UNDO,
 	KIOSK_REDO,
 	KIOSK_CHANGE_VIEW, /* the change-view key at the edit line */
+	KIOSK_NEXT,        /* Page Down at the edit line: the next one (of the family shown) */
+	KIOSK_PREVIOUS,    /* Page Up: the one before */
 };
 
 struct kiosk_action {

@@ -45,6 +45,9 @@ struct group_key {
 
 static const struct group_key group_table[] = {
 	{ "load", "human", G_FIGURES },
+	{ "load", "family", G_FIGURES },
+	{ "show", "family", G_FIGURES },
+	{ "load", "population", G_FIGURES },
 	{ "load", "figure", G_FIGURES },
 	{ "unload", "figure", G_FIGURES },
 	{ "list", "figures", G_FIGURES },
@@ -59,6 +62,9 @@ static const struct group_key group_table[] = {
 	{ "get", "joint", G_POSTURE },
 	{ "get", "posture", G_POSTURE },
 	{ "get", "balance", G_POSTURE },
+	{ "apply", "posture", G_POSTURE },
+	{ "mirror", "posture", G_POSTURE },
+	{ "pose", "family", G_POSTURE },
 
 	{ "manipulate", NULL, G_MANIPULATE },
 	{ "drag", "", G_MANIPULATE },

@@ -399,3 +399,32 @@ pick_scene(const struct pick_target *t, int n, const struct ray *r, double tmin,
 	}
 	return found;
 }
+
+int
+pick_extent(const struct pick_model *pm, const struct state *s, const double dir[3], double *lo,
+	    double *hi)
+{
+	int any = 0;
+	for (int seg = 0; seg < pm->nseg; seg++) {
+		/* dir in the segment's frame: a corner's reach is then one dot product */
+		const struct xform *x = &s->seg_xf[seg];
+		double d[3], off = 0;
+		for (int i = 0; i < 3; i++) {
+			d[i] = x->r[i] * dir[0] + x->r[3 + i] * dir[1] + x->r[6 + i] * dir[2];
+			off += x->p[i] * dir[i];
+		}
+		for (int k = pm->seg_part0[seg]; k < pm->seg_part0[seg] + pm->seg_npart[seg]; k++) {
+			const struct pick_part *p = &pm->part[k];
+			const float *t = pm->tri + 9 * (size_t)p->tri0;
+			for (int c = 0; c < 3 * p->ntri; c++, t += 3) {
+				double v = off + d[0] * t[0] + d[1] * t[1] + d[2] * t[2];
+				if (!any || v < *lo)
+					*lo = v;
+				if (!any || v > *hi)
+					*hi = v;
+				any = 1;
+			}
+		}
+	}
+	return any;
+}

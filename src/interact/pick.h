@@ -88,4 +88,12 @@ struct pick_target {
 int pick_scene(const struct pick_target *t, int n, const struct ray *r, double tmin,
 	       struct pick_hit *dest);
 
+/*
+ * How far the figure reaches along the unit direction dir, as drawn (m in
+ * posture s, kin_update done): the least and greatest dir . p over its
+ * triangles' corners into *lo and *hi. 1, or 0 when it has no geometry.
+ */
+int pick_extent(const struct pick_model *pm, const struct state *s, const double dir[3], double *lo,
+		double *hi);
+
 #endif

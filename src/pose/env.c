@@ -2,6 +2,7 @@
 #include "pose/env.h"
 
 #include <stdio.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,6 +34,7 @@ env_clear(struct env *e)
 	memset(e->con, 0, sizeof e->con);
 	memset(e->view, 0, sizeof e->view);
 	memset(e->att, 0, sizeof e->att);
+	memset(&e->show, 0, sizeof e->show);
 }
 
 static int
@@ -91,6 +93,7 @@ env_add_figure(struct env *e, struct model *model, const char *name, int is_huma
 	if (human)
 		f->human = *human;
 	snprintf(f->path, sizeof f->path, "%s", path ? path : "");
+	f->manikin = (struct env_manikin){ .percentile = NAN, .coverage = NAN };
 	return slot;
 }
 

@@ -13,11 +13,12 @@
 
 #include "pose/behave.h"
 #include "figure/human.h"
+#include "figure/population.h"
 #include "pose/ik.h"
 #include "figure/model.h"
 #include "figure/state.h"
 
-#define ENV_MAX_FIGURES 16
+#define ENV_MAX_FIGURES 40 /* a family of both sexes, 1 + 16 each, and a few more */
 #define ENV_MAX_CONSTRAINTS 64
 #define ENV_PATH_MAX 256
 #define ENV_MAX_VIEWS 8
@@ -34,12 +35,28 @@ enum env_err {
 	ENV_BAD = -5,
 };
 
+/*
+ * A manikin: a human whose measures came from a population (load human
+ * with measures, a percentile or a population; load family). Its body is
+ * its human_def's measures alone; this says where they came from.
+ */
+struct env_manikin {
+	char population[MODEL_NAME_MAX]; /* "": not a manikin of a population */
+	unsigned char given[POPULATION_NCOL]; /* 1: a column it was conditioned on (ANSUR II's order) */
+	double percentile;  /* the stature percentile it was made at; NAN: none */
+	double mahalanobis; /* the distance of its given measures from the population's mean */
+	char family[MODEL_NAME_MAX]; /* the family it is one of ("": none), its prefix */
+	int member;         /* its number in the family: 0 the centre */
+	double coverage;    /* the family's coverage, 0 to 1 (NAN: not one of a family) */
+};
+
 struct env_figure {
 	uint32_t gen; /* 0: a free slot */
 	char name[MODEL_NAME_MAX];
 	/* where the model came from, so a session can rebuild it */
 	int is_human;
 	struct human_def human;
+	struct env_manikin manikin; /* a human made from a population: how */
 	char path[ENV_PATH_MAX]; /* figure file, relative to the state directory */
 	struct model *model;
 	struct state *state;
@@ -77,6 +94,28 @@ struct env_attach {
 
 #define ENV_MAX_ATTACH (4 * ENV_MAX_FIGURES)
 
+/*
+ * A family shown at the kiosk (show family): its members in a row or
+ * overlaid, the selected one opaque and the others translucent ghosts. A
+ * display state, kept in sessions, undo and the journal with the roots the
+ * arrangement set, so what comes back draws and picks as it was left.
+ * Members and the selected one are looked up by name when needed: a
+ * member unloaded leaves the others shown, the selected one gone falls
+ * back to the first member.
+ */
+enum env_arrange {
+	ENV_SHOW_OFF,
+	ENV_SHOW_ROW,     /* side by side along a view's horizontal */
+	ENV_SHOW_OVERLAY, /* all at the selected one's place; the others ghosts */
+};
+
+struct env_show {
+	int arrange;                   /* enum env_arrange */
+	char family[MODEL_NAME_MAX];   /* the family's prefix */
+	char selected[MODEL_NAME_MAX]; /* the member drawn opaque, the status line's */
+	double spacing;                /* ENV_SHOW_ROW: metres between neighbours' places */
+};
+
 /* a named view (§1.7: several graphics windows), its camera aimed at a point */
 struct env_view {
 	int used;
@@ -95,6 +134,7 @@ struct env {
 	int layout[ENV_MAX_VIEWS];
 	int nlayout;
 	struct env_attach att[ENV_MAX_ATTACH];
+	struct env_show show;
 	uint32_t next_gen;
 };
 

@@ -13,7 +13,8 @@ The session changes joints, locations and roots of two figures, adds, switches, 
 and deletes constraints on a third figure (whose enabled constraints always have their
 goal exactly at their effector, so the solver never moves anything and every state is
 exact), undoes and redoes, loads and unloads figures, and saves and loads postures and
-sessions under reused file names.
+sessions under reused file names; loads manikins from measures, percentiles and a
+population loaded from a file, and a family, mirrors postures and applies one to both people.
 """
 import json
 import os
@@ -22,8 +23,9 @@ import signal
 import threading
 import time
 
-from daemon import ConnectionClosed, Daemon, snapshot
+from daemon import ROOT, ConnectionClosed, Daemon, snapshot
 
+POPULATION = ROOT / "data" / "ansur2" / "ANSUR_II_FEMALE_Public.csv"
 KILLS = 20
 STEPS = 400
 ROOTS = ["pelvis.root", "foot_l.balance", "foot_r.balance", "hand_r.palm"]
@@ -98,7 +100,12 @@ class Generator:
         if r < 0.85:
             if "tmp" in names:
                 return "unload figure tmp", True
-            return "load human as tmp stature=1.6", True
+            return rng.choice([
+                "load human as tmp stature=1.6",
+                f"load human as tmp sex=female percentile={rng.uniform(1, 99)!r}",
+                f"load human as tmp sittingheight={rng.uniform(850, 950)!r} "
+                f"weightkg={rng.uniform(60, 90)!r}",
+                "load human as tmp population=pop sex=female stature=1.65"]), True
         if r < 0.88:
             return f"save posture {fig} p{n % 2}.pst", False
         if r < 0.91:
@@ -107,6 +114,17 @@ class Generator:
             return f"save session s{n % 2}.ses", False
         if r < 0.96:
             return f"load session s{rng.randrange(2)}.ses", True
+        if r < 0.968:
+            return f"mirror posture {fig}", True
+        if r < 0.976:
+            return f"apply posture p{rng.randrange(2)}.pst " + " ".join(people), True
+        if r < 0.98:
+            return "load population pop pop.csv", True
+        if r < 0.995:
+            if "fam_0" in names:
+                return f"unload figure fam_{rng.choice([i for i in range(3) if f'fam_{i}' in names])}", True
+            if not any(n.startswith("fam_") for n in names):
+                return f"load family fam sex=male n=2 coverage={rng.uniform(50, 99)!r}", True
         return f"set joint {fig} knee_l {rng.uniform(0, 2)!r}", True
 
 
@@ -186,6 +204,11 @@ def describe_difference(got, want):
 def test_kill9_twenty_times():
     """20 kills at random moments; each restart gives back the acknowledged state."""
     ref, d = Daemon(), Daemon()
+    # a population for `load population`: ANSUR II's first 200 women (100 kB, read in a few
+    # ms: a kill's random moment must be able to fall after it)
+    rows = POPULATION.read_bytes().split(b"\n")
+    for x in (ref, d):
+        (x.state_dir / "pop.csv").write_bytes(b"\n".join(rows[:201]) + b"\n")
     try:
         ref.start()
         commands, states, per_step = build_session(ref)

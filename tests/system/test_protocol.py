@@ -191,6 +191,7 @@ def prepare_state_dir(state_dir):
     shutil.copytree(ROOT / "src" / "figure" / "library", state_dir / "figures")
     (state_dir / "junk.txt").write_text("this is neither a figure, a posture nor a session\n")
     (state_dir / "newer.pst").write_text("posture 99\nfigure human_male\nend\n")
+    shutil.copy(ROOT / "data" / "ansur2" / "ANSUR_II_FEMALE_Public.csv", state_dir / "ansur_women.csv")
 
 
 def run_transcript(d, transcript):
