@@ -354,8 +354,8 @@ def test_end_to_end_a_built_manikin_measures_like_the_population(daemon):
                 n = len(d["stature"])
                 measured = {m: np.empty(n) for m in MEASURES}
                 for i in range(n):
-                    words = " ".join(f"{g}={d[g][i]!r}" if g != "stature"
-                                     else f"stature={d[g][i] / 1000!r}" for g in given)
+                    words = " ".join(f"{g}={float(d[g][i])!r}" if g != "stature"
+                                     else f"stature={float(d[g][i]) / 1000!r}" for g in given)
                     c.request(f"load human as s sex={sex} {words}")
                     got = c.request("get anthropometry s")["measures"]
                     c.request("unload figure s")
