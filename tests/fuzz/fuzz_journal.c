@@ -16,7 +16,11 @@
  * middle) names the journal and changes nothing; otherwise the bytes kept
  * are whole records, and as many as were counted.
  *
- * fuzz-link: -Wl,--wrap=human_build
+ * Inputs are kept to 4 KiB, a few dozen records: longer ones only
+ * repeat commands.
+ *
+ * fuzz-options: -max_len=4096
+ * fuzz-link: -Wl,--wrap=human_build,--wrap=figure_read_file
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -26,7 +30,7 @@
 #include <unistd.h>
 
 #include "daemon/journal.h"
-#include "human_cache.h"
+#include "model_cache.h"
 #include "daemon/journal_scan.h"
 #include "devices/queue.h"
 

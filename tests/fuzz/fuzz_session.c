@@ -8,7 +8,11 @@
  * and leaves the environment empty; a session it accepts is written, read
  * back and written again to the same text.
  *
- * fuzz-link: -Wl,--wrap=human_build
+ * Inputs are kept to 8 KiB, two or three humans with their postures:
+ * longer ones only repeat statements, at a figure each.
+ *
+ * fuzz-options: -max_len=8192
+ * fuzz-link: -Wl,--wrap=human_build,--wrap=figure_read_file
  */
 #define _GNU_SOURCE /* memmem */
 #include <stdint.h>
@@ -17,7 +21,7 @@
 #include <string.h>
 
 #include "daemon/journal.h"
-#include "human_cache.h"
+#include "model_cache.h"
 #include "daemon/session.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
