@@ -2,25 +2,39 @@
 #include "daemon/settings.h"
 
 #include <errno.h>
+#include <sys/types.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <libevdev/libevdev.h>
+
+/* a text setting into its field; one that does not fit is refused, not cut */
+static int
+copy_text(char *dest, size_t size, const char *key, const char *val)
+{
+	size_t n = strlen(val);
+	if (n >= size) {
+		fprintf(stderr, "postured: %s is longer than %zu bytes\n", key, size - 1);
+		return -1;
+	}
+	memcpy(dest, val, n + 1);
+	return 0;
+}
 
 int
 settings_set(struct settings *s, const char *key, const char *val)
 {
 	char *end;
 	if (!strcmp(key, "socket"))
-		snprintf(s->socket, sizeof s->socket, "%s", val);
+		return copy_text(s->socket, sizeof s->socket, key, val);
 	else if (!strcmp(key, "state-dir"))
-		snprintf(s->state_dir, sizeof s->state_dir, "%s", val);
+		return copy_text(s->state_dir, sizeof s->state_dir, key, val);
 	else if (!strcmp(key, "frames"))
-		snprintf(s->frames, sizeof s->frames, "%s", val);
+		return copy_text(s->frames, sizeof s->frames, key, val);
 	else if (!strcmp(key, "fb") || !strcmp(key, "display"))
-		snprintf(s->fb, sizeof s->fb, "%s", val);
+		return copy_text(s->fb, sizeof s->fb, key, val);
 	else if (!strcmp(key, "library"))
-		snprintf(s->library, sizeof s->library, "%s", val);
+		return copy_text(s->library, sizeof s->library, key, val);
 	else if (!strcmp(key, "input")) {
 		if (s->ninputs == INPUT_DEVS_MAX || strlen(val) >= INPUT_DEVS_SPEC_MAX) {
 			fprintf(stderr, "postured: at most %d inputs of %d bytes\n", INPUT_DEVS_MAX,
@@ -47,13 +61,13 @@ settings_set(struct settings *s, const char *key, const char *val)
 			fprintf(stderr, "postured: hotplug must be udev, kernel or none\n");
 			return -1;
 		}
-		snprintf(s->hotplug, sizeof s->hotplug, "%s", val);
+		return copy_text(s->hotplug, sizeof s->hotplug, key, val);
 	} else if (!strcmp(key, "keymap")) {
 		if (strlen(val) >= sizeof s->keymap || !val[0]) {
 			fprintf(stderr, "postured: keymap is a layout name such as us or de:nodeadkeys\n");
 			return -1;
 		}
-		snprintf(s->keymap, sizeof s->keymap, "%s", val);
+		return copy_text(s->keymap, sizeof s->keymap, key, val);
 	} else if (!strcmp(key, "view-key")) {
 		char name[64];
 		snprintf(name, sizeof name, "%s%s", strncmp(val, "KEY_", 4) ? "KEY_" : "", val);
@@ -73,12 +87,12 @@ settings_set(struct settings *s, const char *key, const char *val)
 		s->screen_w = w;
 		s->screen_h = h;
 	} else if (!strcmp(key, "vt")) {
-		snprintf(s->vt, sizeof s->vt, "%s", strcmp(val, "stdin") ? val : "");
 		s->vt_given = strcmp(val, "none") != 0;
+		return copy_text(s->vt, sizeof s->vt, key, strcmp(val, "stdin") ? val : "");
 	} else if (!strcmp(key, "drive")) {
-		snprintf(s->drive, sizeof s->drive, "%s", val);
+		return copy_text(s->drive, sizeof s->drive, key, val);
 	} else if (!strcmp(key, "attract")) {
-		snprintf(s->attract, sizeof s->attract, "%s", val);
+		return copy_text(s->attract, sizeof s->attract, key, val);
 	} else if (!strcmp(key, "attract-after")) {
 		s->attract_after = strtod(val, &end);
 		if (*end || !(s->attract_after >= 1 && s->attract_after <= 86400)) {
@@ -86,9 +100,9 @@ settings_set(struct settings *s, const char *key, const char *val)
 			return -1;
 		}
 	} else if (!strcmp(key, "record")) {
-		snprintf(s->record, sizeof s->record, "%s", val);
+		return copy_text(s->record, sizeof s->record, key, val);
 	} else if (!strcmp(key, "replay")) {
-		snprintf(s->replay, sizeof s->replay, "%s", val);
+		return copy_text(s->replay, sizeof s->replay, key, val);
 	} else if (!strcmp(key, "until")) {
 		s->until = strtoull(val, &end, 10);
 		if (*end || !val[0] || val[0] == '-' || !s->until) {
@@ -102,7 +116,7 @@ settings_set(struct settings *s, const char *key, const char *val)
 		}
 		s->hash_frames = !strcmp(val, "yes");
 	} else if (!strcmp(key, "after")) {
-		snprintf(s->after, sizeof s->after, "%s", val);
+		return copy_text(s->after, sizeof s->after, key, val);
 	} else if (!strcmp(key, "speed")) {
 		s->speed = strcmp(val, "max") ? strtod(val, &end) : 0;
 		if (strcmp(val, "max") && (*end || !(s->speed >= 0.01 && s->speed <= 1000))) {
@@ -110,13 +124,13 @@ settings_set(struct settings *s, const char *key, const char *val)
 			return -1;
 		}
 	} else if (!strcmp(key, "bindings")) {
-		snprintf(s->bindings, sizeof s->bindings, "%s", val);
+		return copy_text(s->bindings, sizeof s->bindings, key, val);
 	} else if (!strcmp(key, "panel"))
-		snprintf(s->panel, sizeof s->panel, "%s", val);
+		return copy_text(s->panel, sizeof s->panel, key, val);
 	else if (!strcmp(key, "init"))
-		snprintf(s->init, sizeof s->init, "%s", val);
+		return copy_text(s->init, sizeof s->init, key, val);
 	else if (!strcmp(key, "token"))
-		snprintf(s->token, sizeof s->token, "%s", val);
+		return copy_text(s->token, sizeof s->token, key, val);
 	else if (!strcmp(key, "fps")) {
 		s->fps = strtod(val, &end);
 		if (*end || !(s->fps >= 1 && s->fps <= 1000)) {
@@ -147,10 +161,18 @@ settings_set(struct settings *s, const char *key, const char *val)
 int
 settings_read(struct settings *s, FILE *f, const char *path)
 {
-	char line[4200];
+	/* each line whole, whatever its length: a piece of a long one is no line of its own */
+	char *line = NULL;
+	size_t cap = 0;
+	ssize_t len;
 	int n = 0, rc = 0;
-	while (rc == 0 && fgets(line, sizeof line, f)) {
+	while (rc == 0 && (len = getline(&line, &cap, f)) >= 0) {
 		n++;
+		if (memchr(line, 0, (size_t)len)) {
+			fprintf(stderr, "postured: %s:%d: a NUL byte in the line\n", path, n);
+			rc = -1;
+			break;
+		}
 		char *p = line, *eq;
 		while (*p == ' ' || *p == '\t')
 			p++;
@@ -173,6 +195,7 @@ settings_read(struct settings *s, FILE *f, const char *path)
 			rc = -1;
 		}
 	}
+	free(line);
 	return rc;
 }
 
