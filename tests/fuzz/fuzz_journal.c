@@ -9,8 +9,9 @@
  * on disk would be; odd, every line of it first sealed with its right
  * checksum (a last line without its newline stays torn), so that the
  * fuzzer reaches what the records say. Commands that write files write
- * them in a folder of their own under /tmp; figure files come from
- * src/figure/library (POSTURE_FUZZ_LIBRARY names another).
+ * them in a folder of their own under /tmp, emptied after an input that
+ * wrote there, so each input starts from the same nothing; figure files
+ * come from src/figure/library (POSTURE_FUZZ_LIBRARY names another).
  *
  * Whatever it reads: no crash, leak or hang; a refusal (damage in the
  * middle) names the journal and changes nothing; otherwise the bytes kept
@@ -22,6 +23,7 @@
  * fuzz-options: -max_len=4096
  * fuzz-link: -Wl,--wrap=human_build,--wrap=figure_read_file
  */
+#include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -82,6 +84,38 @@ daemon_done(void)
 		;
 }
 
+/* what the input's commands wrote (save, export) removed, when they wrote anything */
+static void
+empty_dir(void)
+{
+	static struct timespec seen;
+	struct stat st;
+	if (stat(dir, &st) < 0)
+		abort();
+	if (st.st_mtim.tv_sec == seen.tv_sec && st.st_mtim.tv_nsec == seen.tv_nsec)
+		return;
+	DIR *dp = opendir(dir);
+	if (!dp)
+		abort();
+	for (struct dirent *e; (e = readdir(dp));) {
+		char path[400];
+		if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
+			snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+			remove(path); /* the commands write files, beside each other */
+		}
+	}
+	closedir(dp);
+	if (stat(dir, &st) < 0)
+		abort();
+	seen = st.st_mtim;
+}
+
+static void
+remove_dir(void)
+{
+	rmdir(dir); /* emptied after every input */
+}
+
 /* every line with its checksum after it, as the journal writes them */
 static char *
 sealed(const char *text, size_t len, size_t *out)
@@ -112,6 +146,7 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	if (!ready) {
 		snprintf(dir, sizeof dir, "/tmp/fuzz-journal-%ld", (long)getpid());
 		mkdir(dir, 0700);
+		atexit(remove_dir);
 		ready = 1;
 	}
 	if (size < 1)
@@ -140,6 +175,7 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 			abort();
 	}
 	daemon_done();
+	empty_dir();
 	free(text);
 	return 0;
 }
