@@ -96,7 +96,7 @@ test_whole_records_and_a_damaged_tail(void **unused)
 		journal_scan(text, cut, &s);
 		assert_int_equal(s.damage, JOURNAL_TAIL);
 		assert_true(s.good == end[1] && s.records == 2 && s.last_seq == 6);
-		assert_string_equal(s.why, "a record cut short (no end of line)");
+		assert_string_equal(s.why, "a record cut short, with no end of line");
 	}
 	/* a flipped bit anywhere in it, its newline included */
 	for (size_t i = end[1]; i < len; i++) {
@@ -111,7 +111,7 @@ test_whole_records_and_a_damaged_tail(void **unused)
 	memcpy(z, text, len - 7);
 	journal_scan(z, len, &s);
 	assert_true(s.damage == JOURNAL_TAIL && s.good == end[1]);
-	assert_string_equal(s.why, "a record cut short (no end of line)");
+	assert_string_equal(s.why, "a record cut short, with no end of line");
 	memcpy(z, text, len);
 	journal_scan(z, len + 4096, &s);
 	assert_true(s.damage == JOURNAL_TAIL && s.good == len && s.last_seq == 7);

@@ -130,7 +130,7 @@ journal_scan(const char *text, size_t len, struct journal_scan *s)
 		const char *nl = memchr(p, '\n', (size_t)(end - p)), *why;
 		struct journal_record r;
 		if (!nl) {
-			damaged(text, p, NULL, end, "a record cut short (no end of line)", s);
+			damaged(text, p, NULL, end, "a record cut short, with no end of line", s);
 			return;
 		}
 		if (journal_record_parse(p, (size_t)(nl - p), &r, &why) < 0) {
