@@ -72,6 +72,8 @@ journal_snapshot(struct journal *j, const struct daemon *d, int force)
 	/* the snapshot holds everything: the records can go */
 	if (ftruncate(j->fd, 0) < 0 || fsync(j->fd) < 0)
 		return -1;
+	j->size = 0;
+	j->torn = 0;
 	j->since_snap = 0;
 	return 0;
 }
@@ -284,6 +286,7 @@ replay(struct journal *j, struct daemon *d, uint64_t snap_seq, char *err, size_t
 	free(text);
 	if (rc == 0 && keep < len && ftruncate(j->fd, (off_t)keep) < 0)
 		return say(err, errlen, "%s: cannot drop a damaged tail: %s", j->path, strerror(errno));
+	j->size = keep;
 	return rc;
 }
 
@@ -318,6 +321,14 @@ record(struct journal *j, char kind, const char *body, size_t len)
 {
 	if (j->fd < 0)
 		return 0;
+	/*
+	 * A write that failed part way (a full disk) is cut back before the next
+	 * record: records appended after a piece of one would be damage in the
+	 * middle, which recovery refuses.
+	 */
+	if (j->torn && ftruncate(j->fd, (off_t)j->size) < 0)
+		return -1;
+	j->torn = 0;
 	/* one write for the whole record, so a crash tears at most the last one */
 	size_t n;
 	char *buf = journal_record_format(j->seq + 1, kind, body, len, &n);
@@ -326,8 +337,13 @@ record(struct journal *j, char kind, const char *body, size_t len)
 	int rc = statefile_write_all(j->fd, buf, n);
 	free(buf);
 	if (rc == 0) {
+		j->size += n;
 		j->seq++;
 		j->since_snap++;
+	} else {
+		int e = errno;
+		j->torn = ftruncate(j->fd, (off_t)j->size) < 0;
+		errno = e;
 	}
 	return rc;
 }

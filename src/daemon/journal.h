@@ -36,6 +36,8 @@ struct journal {
 	char path[4200], snap_path[4200];
 	uint64_t seq;        /* the last record written */
 	uint64_t since_snap; /* records since the last snapshot */
+	uint64_t size;       /* bytes of whole records in the file */
+	int torn;            /* a failed write left a piece of a record after them */
 	uint64_t posture_hash[ENV_MAX_FIGURES]; /* postures as the journal knows them */
 	uint32_t posture_gen[ENV_MAX_FIGURES];
 };

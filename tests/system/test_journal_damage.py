@@ -12,12 +12,16 @@ before the damage stay as they were and the journal goes on from there. Damage w
 records after it (a flipped byte in an earlier record) is refused, naming the byte, and
 the journal is left untouched.
 """
+import json
+import math
 import re
+import resource
 import shutil
+import sys
 
 import pytest
 
-from daemon import Daemon, DaemonError, snapshot
+from daemon import Daemon, DaemonError, journal_records, snapshot
 from test_crash import canonical, describe_difference
 
 LAST = "set joint jack knee_l 30deg"  # the last command: its record is the one damaged
@@ -195,5 +199,49 @@ def test_damage_in_the_middle_is_refused_and_the_journal_left_as_it_was(journal)
         d.start()
         with d.client() as c:
             assert observe(c) == reference(journal[:at])
+    finally:
+        d.cleanup()
+
+
+# the daemon under a limit on the size of the files it writes (RLIMIT_FSIZE, SIGXFSZ ignored:
+# a write past it fails with EFBIG, as on a full disk), raised later with prlimit
+LIMITED = ("import os, resource, signal, sys\n"
+           "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
+           "resource.setrlimit(resource.RLIMIT_FSIZE, (int(sys.argv[1]), resource.RLIM_INFINITY))\n"
+           "os.execv(sys.argv[2], sys.argv[2:])\n")
+
+
+def test_a_record_the_disk_had_no_room_for_leaves_no_piece_behind():
+    """A write that fails part way (a full disk) writes the part that fits: cut back, so the
+    records written once there is room again do not follow a piece of one (damage in the
+    middle, which a restart would refuse)."""
+    d = Daemon()
+    (d.state_dir / "journal").write_bytes(b"")
+    limit = 2000
+    d.argv = [sys.executable, "-c", LIMITED, str(limit)] + d.argv
+    try:
+        d.start()
+        with d.client() as c:
+            c.request("load human as jack")
+            for k in range(100):  # until the journal has no room for the next record
+                c.request(f"set joint jack knee_l {k % 90}deg")
+                if "File too large" in d.log_path.read_text():
+                    break
+            else:
+                pytest.fail("the journal never reached its limit\n" + d.log())
+            resource.prlimit(d.pid, resource.RLIMIT_FSIZE,
+                             (resource.RLIM_INFINITY, resource.RLIM_INFINITY))
+            c.request("set joint jack elbow_r 20deg")
+            c.request("set joint jack elbow_l 30deg")
+        data = (d.state_dir / "journal").read_bytes()
+        assert data.endswith(b"\n") and journal_records(d.state_dir)[-1][2] == \
+            "set joint jack elbow_l 30deg", data[-300:]
+        d.restart()
+        with d.client() as c:
+            got = json.loads(observe(c))
+        assert "not a whole record" not in d.log()
+        posture = got["postures"][next(iter(got["postures"]))]
+        assert posture["elbow_l"] == pytest.approx([math.radians(30)], abs=1e-12)
+        assert posture["elbow_r"] == pytest.approx([math.radians(20)], abs=1e-12)
     finally:
         d.cleanup()
