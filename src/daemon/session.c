@@ -24,6 +24,19 @@ write_xform(FILE *f, const struct xform *x)
 		fprintf(f, ",%.17g", x->r[i]);
 }
 
+/* "text" with '"' and '\\' escaped, as words_split reads them */
+static void
+write_quoted(FILE *f, const char *s)
+{
+	fputc('"', f);
+	for (; *s; s++) {
+		if (*s == '"' || *s == '\\')
+			fputc('\\', f);
+		fputc(*s, f);
+	}
+	fputc('"', f);
+}
+
 static void
 write_vec(FILE *f, const double *v, int n)
 {
@@ -106,9 +119,11 @@ session_write(const struct env *e, FILE *f)
 			fprintf(f, "figure %s slot=%d gen=%u human stature=%.17g mass=%.17g sex=%s\n",
 				fg->name, i, fg->gen, fg->human.stature, fg->human.mass,
 				fg->human.sex == HUMAN_FEMALE ? "female" : "male");
-		else
-			fprintf(f, "figure %s slot=%d gen=%u file \"%s\"\n", fg->name, i, fg->gen,
-				fg->path);
+		else {
+			fprintf(f, "figure %s slot=%d gen=%u file ", fg->name, i, fg->gen);
+			write_quoted(f, fg->path);
+			fprintf(f, "\n");
+		}
 		write_figure_posture(fg, f);
 	}
 	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
@@ -292,6 +307,8 @@ read_figure(struct reader *r, struct env *e, const char *base_dir, const char *l
 		m = human_build(&hd, err, sizeof err);
 	} else if (!strcmp(w->w[4], "file") && w->n == 6) {
 		path = w->w[5];
+		if (strlen(path) >= ENV_PATH_MAX)
+			return fail(r, "figure %s: a path longer than %d bytes", w->w[1], ENV_PATH_MAX - 1);
 		char full[2 * ENV_PATH_MAX + 4200];
 		if (!strncmp(path, "lib:", 4))
 			snprintf(full, sizeof full, "%s/%s", library_dir ? library_dir : ".", path + 4);
