@@ -135,6 +135,46 @@ move_left_foot(int follow, double *dx, double *dz, double *moved_bp)
 	rig_free(&r);
 }
 
+/*
+ * A behaviour's packed numbers as a session or the journal gives them back:
+ * each integer field a whole number in its range, or the numbers were not
+ * ours and nothing changes (found by the session fuzzer: a count of 4e40
+ * steps cast to int, undefined; a hand on site -5 was taken)
+ */
+static void
+test_unpack_refuses_numbers_that_are_not_its_own(void **unused)
+{
+	(void)unused;
+	struct rig r;
+	rig_make(&r, NULL);
+	double v[256], w[256], back[256];
+	int n = behave_pack(&r.b, v, 256);
+	assert_true(n > 54 && n <= 256);
+	assert_int_equal(behave_unpack(&r.b, r.m, v, n), 0);
+	/* index in the packed list (behave_store.c's order), a value that is not its own */
+	static const struct {
+		int at;
+		double bad;
+	} cases[] = {
+		{ 0, 2 },      { 0, 4.4e40 },  { 1, -1 },   { 2, 5 },  { 3, -5 },  { 3, 0.5 }, { 3, 1e6 },
+		{ 8, 2 },      { 9, 3 },       { 10, -1 },  { 19, 7 }, { 26, -1 }, { 29, 0.25 },
+		{ 49, 3 },     { 50, -1 },     { 50, 4.4e40 }, { 51, 2 }, { 51, 1 }, { 52, 2 },
+		{ 53, 21 },    { 54, 3e9 },
+	};
+	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+		memcpy(w, v, sizeof v);
+		w[cases[i].at] = cases[i].bad;
+		if (cases[i].at == 53)
+			w[54] = 20; /* a step's frame past its frames */
+		/* at 51, 1: a step under way of 0 frames (the rig's step has none) */
+		if (behave_unpack(&r.b, r.m, w, n) != -1)
+			fail_msg("number %d as %g was taken", cases[i].at, cases[i].bad);
+		assert_int_equal(behave_pack(&r.b, back, 256), n);
+		assert_memory_equal(back, v, sizeof(double) * (size_t)n); /* nothing changed */
+	}
+	rig_free(&r);
+}
+
 static void
 test_fig_5_3_balance_point_follows_feet(void **unused)
 {
@@ -679,6 +719,7 @@ int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_unpack_refuses_numbers_that_are_not_its_own),
 		cmocka_unit_test(test_fig_5_3_balance_point_follows_feet),
 		cmocka_unit_test(test_fig_5_4_shift_com_feet_held),
 		cmocka_unit_test(test_fig_5_5_squat_reroots_at_the_lower_torso),

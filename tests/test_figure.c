@@ -265,6 +265,29 @@ test_round_trip_files(void **unused)
 	}
 }
 
+/*
+ * Meshes at the segment's origin, unscaled: the first is written as its
+ * psurf, the others as geometry (psurf may appear once a segment; found
+ * by the figure fuzzer, whose seed had a psurf and a mesh() at identity)
+ */
+static void
+test_round_trip_two_meshes_at_identity(void **unused)
+{
+	(void)unused;
+	static const char *const texts[] = {
+		"figure two { segment base { psurf = \"quad.obj\"; geometry = mesh(\"leg.obj\"); "
+		"site o->location = trans(0, 0, 0); } root = base.o; }",
+		"figure same { segment base { geometry = mesh(\"quad.obj\"); geometry = box(1, 1, 1); "
+		"geometry = mesh(\"quad.obj\", 1, 1, 1) at trans(0, 0, 0); "
+		"site o->location = trans(0, 0, 0); } root = base.o; }",
+	};
+	for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
+		struct model *m = read_text_ok(texts[i], FIG_DIR);
+		check_round_trip(m, FIG_DIR);
+		model_free(m);
+	}
+}
+
 static void
 test_environment_figures(void **unused)
 {
@@ -707,6 +730,7 @@ main(void)
 		cmocka_unit_test(test_units_and_transforms),
 		cmocka_unit_test(test_crlf_and_exact_message),
 		cmocka_unit_test(test_round_trip_files),
+		cmocka_unit_test(test_round_trip_two_meshes_at_identity),
 		cmocka_unit_test(test_environment_figures),
 		cmocka_unit_test(test_round_trip_random),
 		cmocka_unit_test(test_bad_files),

@@ -81,7 +81,7 @@ apply_keys(struct cmd_ctx *c, int from, const struct env_figure *f, struct ik_co
 		return cmd_fail(c, "bad-argument", "weight: a number >= 0");
 	if (d->pos_weight < 0 || d->pos_weight > 1)
 		return cmd_fail(c, "bad-argument", "posweight: a number from 0 to 1");
-	if (gv != (int)gv || gv < 0 || gv > 3)
+	if (gv < 0 || gv > 3 || gv != (int)gv)
 		return cmd_fail(c, "bad-argument", "group: 0, 1, 2 or 3");
 	d->group = (int)gv;
 	const char *start = cmd_key(c, "start"), *com = cmd_key(c, "com");

@@ -19,6 +19,10 @@ cmd_load_figure(struct cmd_ctx *c)
 	if (c->argc == 3 && strcmp(c->argv[1], "as"))
 		return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[1]);
 	char full[8200], err[512];
+	/* a session keeps the path as given, in a field of ENV_PATH_MAX bytes */
+	if (strlen(c->argv[0]) >= ENV_PATH_MAX)
+		return cmd_fail(c, "bad-argument", "a figure's path is at most %d bytes (a session "
+			        "holds no more)", ENV_PATH_MAX - 1);
 	const char *lib = !strncmp(c->argv[0], "lib:", 4) ? c->argv[0] + 4 : NULL;
 	if (lib) { /* a figure of the shipped library: a plain file name */
 		if (!c->d->library_dir[0])

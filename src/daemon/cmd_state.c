@@ -137,7 +137,7 @@ cmd_settle(struct cmd_ctx *c)
 		return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[0]);
 	if (f && words_number(f, UNIT_NONE, &frames) < 0)
 		return cmd_fail(c, "bad-number", "frames: a whole number");
-	if (frames != (int)frames || frames < 1 || frames > 100000)
+	if (frames < 1 || frames > 100000 || frames != (int)frames)
 		return cmd_fail(c, "bad-argument", "frames: a whole number from 1 to 100000");
 	if (!c->d->run_frame)
 		return cmd_fail(c, "internal", "no frame loop to settle with");

@@ -25,7 +25,7 @@ read_size(struct cmd_ctx *c, const char *key, int *dest)
 	const char *v = cmd_key(c, key);
 	double d;
 	int max = !strcmp(key, "width") ? VIEW_MAX_W : VIEW_MAX_H;
-	if (v && (words_number(v, UNIT_NONE, &d) < 0 || d != (int)d || d < 16 || d > max))
+	if (v && (words_number(v, UNIT_NONE, &d) < 0 || d < 16 || d > max || d != (int)d))
 		return cmd_fail(c, "bad-number", "%s: a whole number of pixels from 16 to %d", key, max);
 	if (v)
 		*dest = (int)d;

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "daemon/cmd.h"
+#include "daemon/journal_scan.h"
 #include "daemon/posture_hash.h"
 #include "daemon/session.h"
 #include "daemon/statefile.h"
@@ -73,6 +74,8 @@ journal_snapshot(struct journal *j, const struct daemon *d, int force)
 	/* the snapshot holds everything: the records can go */
 	if (ftruncate(j->fd, 0) < 0 || fsync(j->fd) < 0)
 		return -1;
+	j->size = 0;
+	j->torn = 0;
 	j->since_snap = 0;
 	return 0;
 }
@@ -224,57 +227,77 @@ unescape_text(const char *body, size_t len, struct daemon_text *dest)
 	return 0;
 }
 
+/* one whole record after the snapshot, acted on as the live daemon did */
+static void
+replay_record(struct daemon *d, const struct journal_record *r)
+{
+	if (r->kind == 'C') {
+		struct cmd_outcome out;
+		cmd_run(d, -1, r->body, r->len, &out);
+		if (!out.ok)
+			fprintf(stderr, "postured: journal record %" PRIu64 " failed on replay: %s\n",
+				r->seq, out.json ? out.json : "");
+		free(out.json);
+		daemon_text_clear(&d->file_given); /* for this command only */
+	} else if (r->kind == 'F') {
+		if (unescape_text(r->body, r->len, &d->file_given) < 0)
+			fprintf(stderr, "postured: journal record %" PRIu64 ": a bad file record\n", r->seq);
+	} else if (r->kind == 'P') {
+		char msg[300];
+		if (session_apply_line(&d->env, r->body, r->len, msg, sizeof msg) < 0)
+			fprintf(stderr, "postured: journal record %" PRIu64 ": %s\n", r->seq, msg);
+	} else if (r->kind == 'B' || r->kind == 'E' || r->kind == 'A') {
+		replay_step(d, r->kind, r->seq);
+	}
+}
+
+int
+journal_replay_text(struct journal *j, struct daemon *d, const char *text, size_t len,
+		    uint64_t snap_seq, size_t *keep, char *err, size_t errlen)
+{
+	struct journal_scan s;
+	journal_scan(text, len, &s);
+	if (s.damage == JOURNAL_MIDDLE)
+		return say(err, errlen,
+			   "%s: byte %zu: %s, and whole records follow it (record %" PRIu64
+			   " at byte %zu): damage in the middle, not a crash's; the journal is left "
+			   "as it is. To start from the records before it, cut it there (truncate "
+			   "-s %zu); to start from the snapshot alone, move it aside",
+			   j->path, s.good, s.why, s.next_seq, s.next, s.good);
+	for (const char *p = text, *end = text + s.good; p < end;) {
+		const char *nl = memchr(p, '\n', (size_t)(end - p)), *why;
+		struct journal_record r;
+		journal_record_parse(p, (size_t)(nl - p), &r, &why); /* whole: the scan said so */
+		if (r.seq > snap_seq)
+			replay_record(d, &r);
+		j->seq = r.seq;
+		j->since_snap++;
+		p = nl + 1;
+	}
+	if (s.damage == JOURNAL_TAIL) {
+		char after[48] = "before any whole record";
+		if (s.records)
+			snprintf(after, sizeof after, "after record %" PRIu64, s.last_seq);
+		fprintf(stderr, "postured: journal %s: the last %zu bytes (from byte %zu, %s) are "
+			"not a whole record (%s): dropped\n", j->path, len - s.good, s.good, after, s.why);
+	}
+	*keep = s.good;
+	return 0;
+}
+
 static int
 replay(struct journal *j, struct daemon *d, uint64_t snap_seq, char *err, size_t errlen)
 {
-	size_t len;
+	size_t len, keep;
 	char *text = statefile_read(j->path, &len);
 	if (!text)
 		return errno == ENOENT ? 0 : say(err, errlen, "%s: %s", j->path, strerror(errno));
-	const char *p = text, *end = text + len;
-	size_t good = 0; /* bytes of whole records */
-	while (p < end) {
-		const char *nl = memchr(p, '\n', (size_t)(end - p));
-		if (!nl) /* a torn last record: it was never acknowledged */
-			break;
-		uint64_t seq;
-		char kind;
-		int off = 0;
-		if (sscanf(p, "%" SCNu64 " %c %n", &seq, &kind, &off) != 2 || !off || p + off > nl) {
-			free(text);
-			return say(err, errlen, "%s: byte %zu: not a journal record", j->path, good);
-		}
-		const char *body = p + off;
-		size_t blen = (size_t)(nl - body);
-		if (seq > snap_seq) {
-			if (kind == 'C') {
-				struct cmd_outcome out;
-				cmd_run(d, -1, body, blen, &out);
-				if (!out.ok)
-					fprintf(stderr, "postured: journal record %" PRIu64 " failed on replay: %s\n",
-						seq, out.json ? out.json : "");
-				free(out.json);
-				daemon_text_clear(&d->file_given); /* for this command only */
-			} else if (kind == 'F') {
-				if (unescape_text(body, blen, &d->file_given) < 0)
-					fprintf(stderr, "postured: journal record %" PRIu64 ": a bad file record\n", seq);
-			} else if (kind == 'P') {
-				char msg[300];
-				if (session_apply_line(&d->env, body, blen, msg, sizeof msg) < 0)
-					fprintf(stderr, "postured: journal record %" PRIu64 ": %s\n", seq, msg);
-			} else if (kind == 'B' || kind == 'E' || kind == 'A') {
-				replay_step(d, kind, seq);
-			}
-		}
-		j->seq = seq;
-		j->since_snap++;
-		p = nl + 1;
-		good = (size_t)(p - text);
-	}
+	int rc = journal_replay_text(j, d, text, len, snap_seq, &keep, err, errlen);
 	free(text);
-	if (good < len && ftruncate(j->fd, (off_t)good) < 0)
-		return say(err, errlen, "%s: cannot drop a torn record: %s", j->path, strerror(errno));
-	return 0;
+	if (rc == 0 && keep < len && ftruncate(j->fd, (off_t)keep) < 0)
+		return say(err, errlen, "%s: cannot drop a damaged tail: %s", j->path, strerror(errno));
+	j->size = keep;
+	return rc;
 }
 
 int
@@ -308,20 +331,29 @@ record(struct journal *j, char kind, const char *body, size_t len)
 {
 	if (j->fd < 0)
 		return 0;
-	char head[32];
-	int n = snprintf(head, sizeof head, "%" PRIu64 " %c ", j->seq + 1, kind);
+	/*
+	 * A write that failed part way (a full disk) is cut back before the next
+	 * record: records appended after a piece of one would be damage in the
+	 * middle, which recovery refuses.
+	 */
+	if (j->torn && ftruncate(j->fd, (off_t)j->size) < 0)
+		return -1;
+	j->torn = 0;
 	/* one write for the whole record, so a crash tears at most the last one */
-	char *buf = malloc((size_t)n + len + 1);
+	size_t n;
+	char *buf = journal_record_format(j->seq + 1, kind, body, len, &n);
 	if (!buf)
 		return -1;
-	memcpy(buf, head, (size_t)n);
-	memcpy(buf + n, body, len);
-	buf[(size_t)n + len] = '\n';
-	int rc = statefile_write_all(j->fd, buf, (size_t)n + len + 1);
+	int rc = statefile_write_all(j->fd, buf, n);
 	free(buf);
 	if (rc == 0) {
+		j->size += n;
 		j->seq++;
 		j->since_snap++;
+	} else {
+		int e = errno;
+		j->torn = ftruncate(j->fd, (off_t)j->size) < 0;
+		errno = e;
 	}
 	return rc;
 }

@@ -2,7 +2,8 @@
  * journal.h - nothing lost: every state change is on disk before the client
  * hears of it.
  *
- * The journal is an append-only text file of numbered records: "C line"
+ * The journal is an append-only text file of numbered records, each a line
+ * ending in its checksum (journal_scan.h): "C line"
  * for a state-changing command, before it "F text" for the state file it
  * read (load posture, load session; escaped to one line), so recovery
  * replays what was read, not what a later save put in its place;
@@ -12,7 +13,12 @@
  * number of the last record it includes) bounds the journal: after it is
  * safely renamed into place the journal is emptied, and records it already
  * includes are skipped on recovery, so a crash between the two is harmless.
- * A torn last record (a crash mid-write, never acknowledged) is dropped.
+ *
+ * Damage at the end (a record torn by a crash, zero bytes, flipped bits in
+ * the last records) is dropped on recovery with one line on stderr saying
+ * where and what: the state is the last whole record's. Damage with whole
+ * records after it cannot come from a crash; recovery refuses it, naming
+ * the byte, rather than lose the acknowledged records after it.
  */
 #ifndef POSTURE_JOURNAL_H
 #define POSTURE_JOURNAL_H
@@ -36,6 +42,8 @@ struct journal {
 	char path[4200], snap_path[4200];
 	uint64_t seq;        /* the last record written */
 	uint64_t since_snap; /* records since the last snapshot */
+	uint64_t size;       /* bytes of whole records in the file */
+	int torn;            /* a failed write left a piece of a record after them */
 	uint64_t posture_hash[ENV_MAX_FIGURES]; /* postures as the journal knows them */
 	uint32_t posture_gen[ENV_MAX_FIGURES];
 };
@@ -47,6 +55,16 @@ struct journal {
  * (snapshot, then records). Returns 0, or -1 with a message in err.
  */
 int journal_open(struct journal *j, struct daemon *d, char *err, size_t errlen);
+
+/*
+ * Recovery's work on the journal's text (the whole file): damage in the
+ * middle is refused (-1, err naming the byte and the ways out); otherwise
+ * the whole records after snap_seq are replayed into d, a damaged tail is
+ * told in one line on stderr, *keep is set to the bytes of whole records
+ * (the file is cut there) and j->seq is the last whole record's. 0.
+ */
+int journal_replay_text(struct journal *j, struct daemon *d, const char *text, size_t len,
+			uint64_t snap_seq, size_t *keep, char *err, size_t errlen);
 
 /* records a state-changing command line; 0 or -1 (errno) */
 int journal_command(struct journal *j, const struct daemon *d, const char *line, size_t len);

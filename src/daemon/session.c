@@ -27,6 +27,19 @@ write_xform(FILE *f, const struct xform *x)
 		fprintf(f, ",%.17g", x->r[i]);
 }
 
+/* "text" with '"' and '\\' escaped, as words_split reads them */
+static void
+write_quoted(FILE *f, const char *s)
+{
+	fputc('"', f);
+	for (; *s; s++) {
+		if (*s == '"' || *s == '\\')
+			fputc('\\', f);
+		fputc(*s, f);
+	}
+	fputc('"', f);
+}
+
 static void
 write_vec(FILE *f, const double *v, int n)
 {
@@ -120,9 +133,11 @@ session_write(const struct env *e, FILE *f)
 				fg->human.sex == HUMAN_FEMALE ? "female" : "male");
 			manikin_write_words(fg, f);
 			fprintf(f, "\n");
-		} else
-			fprintf(f, "figure %s slot=%d gen=%u file \"%s\"\n", fg->name, i, fg->gen,
-				fg->path);
+		} else {
+			fprintf(f, "figure %s slot=%d gen=%u file ", fg->name, i, fg->gen);
+			write_quoted(f, fg->path);
+			fprintf(f, "\n");
+		}
 		write_figure_posture(fg, f);
 	}
 	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++) {
@@ -285,6 +300,25 @@ find_fig(struct env *e, const char *name)
 	return -1;
 }
 
+/*
+ * A figure file's path as load figure takes it: relative to the state
+ * directory with no ".." in it, or "lib:NAME" with NAME a file of the
+ * library. A session reaches no other file (one outside could be a FIFO or
+ * a terminal, and the daemon would wait on it for ever).
+ */
+static int
+path_inside(const char *path)
+{
+	if (!strncmp(path, "lib:", 4))
+		return path[4] && path[4] != '.' && !strchr(path + 4, '/');
+	if (!path[0] || path[0] == '/')
+		return 0;
+	for (const char *p = path; p; p = strchr(p, '/') ? strchr(p, '/') + 1 : NULL)
+		if (!strncmp(p, "..", 2) && (p[2] == '/' || !p[2]))
+			return 0;
+	return 1;
+}
+
 static int
 read_figure(struct reader *r, struct env *e, const char *base_dir, const char *library_dir)
 {
@@ -314,6 +348,11 @@ read_figure(struct reader *r, struct env *e, const char *base_dir, const char *l
 		m = human_build(&hd, err, sizeof err);
 	} else if (!strcmp(w->w[4], "file") && w->n == 6) {
 		path = w->w[5];
+		if (strlen(path) >= ENV_PATH_MAX)
+			return fail(r, "figure %s: a path longer than %d bytes", w->w[1], ENV_PATH_MAX - 1);
+		if (!path_inside(path))
+			return fail(r, "figure %s: its file must be inside the state directory (a relative "
+				       "path without '..'), or lib:NAME of the library", w->w[1]);
 		char full[2 * ENV_PATH_MAX + 4200];
 		if (!strncmp(path, "lib:", 4))
 			snprintf(full, sizeof full, "%s/%s", library_dir ? library_dir : ".", path + 4);

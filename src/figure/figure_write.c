@@ -142,8 +142,9 @@ write_check(const struct model *m)
 	       write_all_finite(m->root_quat, 4);
 }
 
+/* psurf: the segment's first mesh at its origin, unscaled (psurf is allowed once) */
 static void
-write_geom(FILE *f, const struct model *m, int g)
+write_geom(FILE *f, const struct model *m, int g, int *psurf_written)
 {
 	static const double one[3] = { 1, 1, 1 }, zero[3] = { 0, 0, 0 };
 	static const char *const kind[] = { "box", "cylinder", "capsule", "ellipsoid", "mesh" };
@@ -151,9 +152,10 @@ write_geom(FILE *f, const struct model *m, int g)
 	const double *quat = &m->geom_quat[4 * g];
 	if (m->geom_kind[g] == GEOM_MESH) {
 		const char *path = m->mesh_path[m->geom_mesh[g]];
-		if (!memcmp(size, one, sizeof one) && !memcmp(pos, zero, sizeof zero) &&
-		    !memcmp(quat, write_qid, sizeof write_qid)) {
+		if (!*psurf_written && !memcmp(size, one, sizeof one) &&
+		    !memcmp(pos, zero, sizeof zero) && !memcmp(quat, write_qid, sizeof write_qid)) {
 			fprintf(f, "\t\tpsurf = \"%s\";\n", path);
+			*psurf_written = 1;
 			return;
 		}
 		fprintf(f, "\t\tgeometry = mesh(\"%s\", ", path);
@@ -185,8 +187,9 @@ write_segment(FILE *f, const struct model *m, int s)
 	for (int i = 0; i < n; i++)
 		fprintf(f, "%s%s", i ? ", " : "", write_float(rgba[i], b, sizeof b));
 	fputs(");\n", f);
+	int psurf = 0;
 	for (int g = m->seg_geom0[s]; g < m->seg_geom0[s] + m->seg_ngeom[s]; g++)
-		write_geom(f, m, g);
+		write_geom(f, m, g, &psurf);
 	for (int i = m->seg_site0[s]; i < m->seg_site0[s] + m->seg_nsite[s]; i++) {
 		fprintf(f, "\t\tsite %s->location = ", m->site_name[i]);
 		write_xform(f, &m->site_pos[3 * i], &m->site_quat[4 * i]);

@@ -4,6 +4,8 @@
  */
 #include "pose/behave.h"
 
+#include <limits.h>
+#include <math.h>
 #include <string.h>
 
 #include "pose/behave_internal.h"
@@ -72,6 +74,23 @@ behave_pack(const struct behave *b, double *dest, int max)
 
 #define PACK_GET() (v[n++])
 
+/*
+ * v as a whole number in [lo, hi]; else lo, with *bad set: the numbers were
+ * not ours (a cast of any other double to int is undefined)
+ */
+static int
+whole(double v, int lo, int hi, int *bad)
+{
+	if (!(v >= lo && v <= hi) || v != floor(v)) {
+		*bad = 1;
+		return lo;
+	}
+	return (int)v;
+}
+
+#define INT_GET(lo, hi) whole(PACK_GET(), (lo), (hi), &bad)
+#define FLAG_GET() INT_GET(0, 1)
+
 int
 behave_unpack(struct behave *b, const struct model *m, const double *v, int nv)
 {
@@ -79,34 +98,34 @@ behave_unpack(struct behave *b, const struct model *m, const double *v, int nv)
 	memset(&fresh, 0, sizeof fresh);
 	if (nv != behave_pack(&fresh, NULL, 0) || behave_find_sites(&fresh, m) < 0)
 		return -1;
-	int n = 0;
+	int n = 0, bad = 0;
 	struct behave_params *p = &fresh.p;
 	for (int k = 0; k < 2; k++) {
-		p->foot[k] = (enum foot_behavior)PACK_GET();
-		p->heel[k] = (enum heel_behavior)PACK_GET();
-		p->hand[k] = (enum hand_behavior)PACK_GET();
-		p->hand_site[k] = (int)PACK_GET();
+		p->foot[k] = (enum foot_behavior)INT_GET(FOOT_PIVOT, FOOT_HOLD_GLOBAL);
+		p->heel[k] = (enum heel_behavior)INT_GET(HEEL_KEEP_ON_FLOOR, HEEL_ALLOW_RISE);
+		p->hand[k] = (enum hand_behavior)INT_GET(HAND_FREE, HAND_ON_SITE);
+		p->hand_site[k] = INT_GET(-1, m->nsite - 1);
 	}
-	p->hold_elevation = (int)PACK_GET();
-	p->torso = (enum torso_behavior)PACK_GET();
-	p->fixate_head = (int)PACK_GET();
-	p->fixate_eyes = (int)PACK_GET();
+	p->hold_elevation = FLAG_GET();
+	p->torso = (enum torso_behavior)INT_GET(TORSO_KEEP_VERTICAL, TORSO_FREE);
+	p->fixate_head = FLAG_GET();
+	p->fixate_eyes = FLAG_GET();
 	for (int i = 0; i < 3; i++) {
 		p->head_point[i] = PACK_GET();
 		p->eyes_point[i] = PACK_GET();
 	}
 	p->spring_angle = PACK_GET();
-	p->balance_follows_feet = (int)PACK_GET();
-	p->pelvis_follows_feet = (int)PACK_GET();
-	p->auto_root = (int)PACK_GET();
-	p->root_through_com = (int)PACK_GET();
-	p->step_when_losing_balance = (int)PACK_GET();
-	p->step_when_twisted = (int)PACK_GET();
+	p->balance_follows_feet = FLAG_GET();
+	p->pelvis_follows_feet = FLAG_GET();
+	p->auto_root = FLAG_GET();
+	p->root_through_com = FLAG_GET();
+	p->step_when_losing_balance = FLAG_GET();
+	p->step_when_twisted = FLAG_GET();
 	p->twist_limit = PACK_GET();
-	p->step_frames = (int)PACK_GET();
-	p->foot_follows_line = (int)PACK_GET();
-	p->hands_laban = (int)PACK_GET();
-	p->seated = (int)PACK_GET();
+	p->step_frames = INT_GET(0, INT_MAX - 1); /* 0: the default's */
+	p->foot_follows_line = FLAG_GET();
+	p->hands_laban = FLAG_GET();
+	p->seated = FLAG_GET();
 	p->stability_threshold = PACK_GET();
 	fresh.leg_length = PACK_GET();
 	fresh.bal_x = PACK_GET();
@@ -118,12 +137,13 @@ behave_unpack(struct behave *b, const struct model *m, const double *v, int nv)
 		fresh.pelvis_turn[i] = PACK_GET();
 	for (int i = 0; i < 3; i++)
 		fresh.com_fixed[i] = PACK_GET();
-	fresh.root = (enum balance_root)PACK_GET();
-	fresh.steps_taken = (int)PACK_GET();
-	fresh.step.active = (int)PACK_GET();
-	fresh.step.side = (int)PACK_GET();
-	fresh.step.frame = (int)PACK_GET();
-	fresh.step.frames = (int)PACK_GET();
+	fresh.root = (enum balance_root)INT_GET(BALANCE_ROOT_LEFT_FOOT, BALANCE_ROOT_LOWER_TORSO);
+	fresh.steps_taken = INT_GET(0, INT_MAX - 1);
+	fresh.step.active = FLAG_GET();
+	fresh.step.side = INT_GET(0, 1);
+	/* a step's frame counts up to its frames: both within int, the count one past too */
+	fresh.step.frame = INT_GET(0, INT_MAX - 1);
+	fresh.step.frames = INT_GET(0, INT_MAX - 1);
 	for (int i = 0; i < 3; i++) {
 		fresh.step.from.p[i] = PACK_GET();
 		fresh.step.to.p[i] = PACK_GET();
@@ -132,13 +152,7 @@ behave_unpack(struct behave *b, const struct model *m, const double *v, int nv)
 		fresh.step.from.r[i] = PACK_GET();
 		fresh.step.to.r[i] = PACK_GET();
 	}
-	/* enumerations and sides within their ranges, or the numbers were not ours */
-	for (int k = 0; k < 2; k++)
-		if ((unsigned)p->foot[k] > FOOT_HOLD_GLOBAL || (unsigned)p->heel[k] > HEEL_ALLOW_RISE ||
-		    (unsigned)p->hand[k] > HAND_ON_SITE || p->hand_site[k] >= m->nsite)
-			return -1;
-	if ((unsigned)p->torso > TORSO_FREE || (unsigned)fresh.root > BALANCE_ROOT_LOWER_TORSO ||
-	    (unsigned)fresh.step.side > 1)
+	if (bad || fresh.step.frame > fresh.step.frames || (fresh.step.active && !fresh.step.frames))
 		return -1;
 	memcpy(fresh.def, b->def, sizeof fresh.def);
 	*b = fresh;

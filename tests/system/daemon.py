@@ -6,7 +6,7 @@ Builds nothing: the daemon is $POSTURE_BUILD/bin/postured (default build/rel), b
 its stderr log; the log is shown when the daemon misbehaves.
 
 Fixtures: ``daemon`` (a fresh daemon per test) and ``daemon_factory`` (start as many as
-a test needs, with options). Helpers: :func:`snapshot` (the observable state).
+a test needs, with options). Helpers: :func:`snapshot` (the observable state), :func:`journal_records`.
 """
 import os
 import pathlib
@@ -221,6 +221,19 @@ def snapshot(client):
             "behaviours": behaviours}
 
 
+def journal_records(state_dir):
+    """The records of a state directory's journal as (number, kind, body): each line is
+    "SEQ KIND BODY CRC", CRC its checksum (src/daemon/journal_scan.h), checked here."""
+    import zlib
+    out = []
+    for line in (pathlib.Path(state_dir) / "journal").read_bytes().splitlines():
+        head, crc = line.rsplit(b" ", 1)
+        assert int(crc, 16) == zlib.crc32(head), f"a journal record with a bad checksum: {line!r}"
+        seq, kind, body = head.decode().split(" ", 2)
+        out.append((int(seq), kind, body))
+    return out
+
+
 def wait_closed(client, timeout=5.0):
     """True when the daemon closes the connection within timeout (data before EOF is
     discarded); False if it stays open."""
@@ -236,7 +249,7 @@ def wait_closed(client, timeout=5.0):
 
 
 __all__ = ["Daemon", "DaemonError", "daemon", "daemon_factory", "snapshot", "wait_closed",
-           "free_tcp_port", "Client", "PostureError", "ConnectionClosed", "ROOT", "BUILD",
+           "free_tcp_port", "journal_records", "Client", "PostureError", "ConnectionClosed", "ROOT", "BUILD",
            "POSTURED"]
 
 

@@ -5,13 +5,12 @@ the figure in the mode they started, the keyboard's ESC ends it. Then a HID mous
 hid-tools recording's descriptor) replays reports through hidapi's hidraw path and drags.
 The journal holds the typed commands and the drags' steps; the pictures go to the test
 output."""
-import pathlib
 import shutil
 import time
 
 import pytest
 
-from daemon import Daemon, ROOT, write_picture
+from daemon import Daemon, ROOT, journal_records, write_picture
 from kiosk_keys import key_lines
 from test_input import kernel_codes
 
@@ -88,9 +87,7 @@ def test_a_recorded_keyboard_and_mouse_drive_the_kiosk(tmp_path):
             write_picture(c, "front", "kiosk_recorded.png")
         assert moved[0] - start[0] > 0.05, (start, moved)  # dragged along x, to the right
         assert moved[1:] == pytest.approx(start[1:], abs=1e-9)
-        records = [r.split(" ", 2)[1:] for r in
-                   (pathlib.Path(d.state_dir) / "journal").read_text().splitlines()]
-        marks = [(k, b) for k, b in records if k in "CBE"]
+        marks = [(k, b) for _, k, b in journal_records(d.state_dir) if k in "CBE"]
         assert marks[:2] == [("C", "add view front width=480 height=320 eye=0,1,3 target=0,1,0"),
                              ("C", "load human as rec")]
         assert [k for k, _ in marks[2:]] == ["B", "E"]
@@ -129,8 +126,7 @@ def test_a_hid_mouse_replayed_through_hidapi_drags_in_the_kiosk(tmp_path):
             write_picture(c, "front", "kiosk_recorded_hid.png")
         assert moved[0] - start[0] > 0.02, (start, moved)
         assert moved[1:] == pytest.approx(start[1:], abs=1e-9)
-        kinds = [r.split(" ", 2)[1] for r in
-                 (pathlib.Path(d.state_dir) / "journal").read_text().splitlines()]
+        kinds = [k for _, k, _ in journal_records(d.state_dir)]
         assert [k for k in kinds if k in "BE"] == ["B", "E"]
     finally:
         d.stop()

@@ -3,11 +3,10 @@ did (`<` lines: socket lines, `type TEXT` typed on a US keyboard, `key NAME` pre
 released, `chord A B` held together) and what the journal must hold for it (`>` lines: the
 command records `C LINE`, `*` at the end of a line matching any rest, and the step marks
 `B`, `E`, `A`; posture records are the solver's and not compared)."""
-import pathlib
 
 import pytest
 
-from daemon import ROOT, daemon_factory  # noqa: F401 (fixture)
+from daemon import ROOT, daemon_factory, journal_records  # noqa: F401 (fixture)
 from kiosk_keys import press, type_text
 
 TRANSCRIPTS = sorted((ROOT / "tests" / "kiosk").glob("*.txt"))
@@ -28,8 +27,7 @@ def parse(path):
 def journaled(state_dir):
     """the journal's command records and step marks, in order"""
     out = []
-    for rec in (pathlib.Path(state_dir) / "journal").read_text().splitlines():
-        _, kind, body = rec.split(" ", 2)
+    for _, kind, body in journal_records(state_dir):
         if kind == "C":
             out.append(f"C {body}")
         elif kind in "BEA":
