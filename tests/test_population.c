@@ -400,6 +400,34 @@ test_family_properties(void **state)
 					   sizeof err), -1);
 }
 
+static void
+test_stature_rank_inverts_the_percentile(void **state)
+{
+	(void)state;
+	const struct population *p = population_ansur2();
+	char err[256];
+	double prev = -1, pct, mm;
+	for (double s = 1400; s <= 2000; s += 0.7) {
+		assert_int_equal(population_stature_rank(p, HUMAN_FEMALE, s, &pct, err, sizeof err), 0);
+		assert_true(pct >= prev && pct >= 0 && pct <= 100); /* monotone, in range */
+		prev = pct;
+		/* between two different statures the rank is exact: the percentile gives s back */
+		if (pct > 0 && pct < 100 && s != floor(s)) {
+			assert_int_equal(population_percentile(p, HUMAN_FEMALE, pct, &mm, err, sizeof err), 0);
+			assert_near(mm, s, 1e-9);
+		}
+	}
+	assert_int_equal(population_stature_rank(p, HUMAN_MALE, 1000, &pct, err, sizeof err), 0);
+	assert_near(pct, 0, 0);
+	assert_int_equal(population_stature_rank(p, HUMAN_MALE, 2500, &pct, err, sizeof err), 0);
+	assert_near(pct, 100, 0);
+	/* a stature many share: the middle of their ranks, whose percentile is that stature */
+	assert_int_equal(population_stature_rank(p, HUMAN_FEMALE, 1525, &pct, err, sizeof err), 0);
+	assert_int_equal(population_percentile(p, HUMAN_FEMALE, pct, &mm, err, sizeof err), 0);
+	assert_near(mm, 1525, 0);
+	assert_true(pct > 4 && pct < 6);
+}
+
 int
 main(void)
 {
@@ -411,6 +439,7 @@ main(void)
 		cmocka_unit_test(test_csv_refusals),
 		cmocka_unit_test(test_prediction_properties),
 		cmocka_unit_test(test_family_properties),
+		cmocka_unit_test(test_stature_rank_inverts_the_percentile),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

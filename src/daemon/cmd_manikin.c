@@ -11,6 +11,7 @@
 
 #include "daemon/cmd_ctx.h"
 #include "daemon/manikin.h"
+#include "figure/kin.h"
 #include "figure/mvn.h"
 #include "figure/population_csv.h"
 
@@ -405,4 +406,79 @@ out:
 	free(rows);
 	free(dist);
 	return rc;
+}
+
+/* ---- a family shown side by side or overlaid ---------------------------------- */
+
+/* family members first by sex (women first), then by number */
+static int
+member_order(const struct env *e, int a, int b)
+{
+	const struct env_figure *x = &e->fig[a], *y = &e->fig[b];
+	if (x->human.sex != y->human.sex)
+		return x->human.sex == HUMAN_FEMALE ? -1 : 1;
+	return x->manikin.member - y->manikin.member;
+}
+
+int
+cmd_arrange_family(struct cmd_ctx *c)
+{
+	struct env *e = &c->d->env;
+	const char *prefix = c->argv[0], *how = c->argv[1];
+	int row = !strcmp(how, "row");
+	if (!row && strcmp(how, "overlay"))
+		return cmd_fail(c, "bad-argument", "arrange family PREFIX row [spacing=M] | overlay "
+				"[selected=FIG]");
+	for (int i = 2; i < c->argc; i++)
+		if (!words_is_key(c->argv[i], row ? "spacing" : "selected"))
+			return cmd_fail(c, "bad-argument", "unexpected '%.60s'", c->argv[i]);
+	int slot[ENV_MAX_FIGURES], n = 0;
+	for (int i = 0; i < ENV_MAX_FIGURES; i++)
+		if (e->fig[i].gen && e->fig[i].is_human && !strcmp(e->fig[i].manikin.family, prefix)) {
+			int k = n++;
+			for (; k > 0 && member_order(e, slot[k - 1], i) > 0; k--) /* insertion, in order */
+				slot[k] = slot[k - 1];
+			slot[k] = i;
+		}
+	if (!n)
+		return cmd_fail(c, "not-found", "no family '%.60s' (load family)", prefix);
+	double spacing = 0.8;
+	const char *sw = cmd_key(c, "spacing"), *sel = cmd_key(c, "selected");
+	if (sw && (words_number(sw, UNIT_LENGTH, &spacing) < 0 || !(spacing > 0 && spacing <= 100)))
+		return cmd_fail(c, "bad-number", "spacing: a length above 0 and at most 100 m");
+	int selected = slot[0];
+	if (sel) {
+		if ((selected = cmd_figure(c, sel)) < 0)
+			return -1;
+		if (strcmp(e->fig[selected].manikin.family, prefix))
+			return cmd_fail(c, "bad-argument", "%s is not one of family %s", e->fig[selected].name,
+					prefix);
+	}
+	/*
+	 * each member moved across the floor by its pelvis, whatever its root (heights and turns
+	 * kept), about the members' mean place: row, overlay and row again come back alike
+	 */
+	double x0 = 0, z0 = 0;
+	for (int k = 0; k < n; k++) {
+		const struct env_figure *f = &e->fig[slot[k]];
+		const double *p = f->state->site_xf[model_find_site(f->model, HUMAN_SITE_ROOT)].p;
+		x0 += p[0] / n;
+		z0 += p[2] / n;
+	}
+	json_t *list = json_array();
+	for (int k = 0; k < n; k++) {
+		struct env_figure *f = &e->fig[slot[k]];
+		const double *p = f->state->site_xf[model_find_site(f->model, HUMAN_SITE_ROOT)].p;
+		double x = row ? x0 + (k - (n - 1) / 2.0) * spacing : x0;
+		f->state->root_xf.p[0] += x - p[0];
+		f->state->root_xf.p[2] += z0 - p[2];
+		kin_update(f->model, f->state);
+		f->manikin.ghost = !row && slot[k] != selected;
+		json_t *o = json_object();
+		json_object_set_new(o, "name", json_string(f->name));
+		json_object_set_new(o, "ghost", json_boolean(f->manikin.ghost));
+		json_array_append_new(list, o);
+	}
+	json_object_set_new(c->result, "figures", list);
+	return 0;
 }

@@ -38,6 +38,8 @@ manikin_write_words(const struct env_figure *f, FILE *dest)
 	if (mk->family[0])
 		fprintf(dest, " family=%s member=%d coverage=%.17g", mk->family, mk->member,
 			mk->coverage);
+	if (mk->ghost)
+		fprintf(dest, " ghost=1");
 }
 
 static const char *
@@ -95,10 +97,14 @@ manikin_read_words(const struct words *w, int from, struct human_def *hd,
 		snprintf(mk->family, sizeof mk->family, "%s", fam);
 		mk->member = (int)v;
 	}
+	const char *ghost = word(w, from, "ghost");
+	if (ghost && strcmp(ghost, "1"))
+		goto bad;
+	mk->ghost = ghost != NULL;
 	return 0;
 bad:
 	snprintf(err, errlen, "a manikin's provenance is population=NAME given=NAME,... "
-		 "mahalanobis=D [percentile=P] [family=PREFIX member=I coverage=C]");
+		 "mahalanobis=D [percentile=P] [family=PREFIX member=I coverage=C] [ghost=1]");
 	return -1;
 }
 
@@ -142,5 +148,6 @@ manikin_json(const struct env_figure *f, json_t *o)
 		json_object_set_new(o, "family", json_string(mk->family));
 		json_object_set_new(o, "member", json_integer(mk->member));
 		json_object_set_new(o, "coverage", json_real(100 * mk->coverage));
+		json_object_set_new(o, "ghost", json_boolean(mk->ghost));
 	}
 }

@@ -4,6 +4,7 @@
 #include "interact/menu_draw.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -231,6 +232,45 @@ in_layout(const struct env *e, int v)
 }
 
 /*
+ * The manikin the kiosk works with, as the status line names it: the
+ * mode's figure, else the selected one of a family overlaid (its
+ * non-ghost), else the one whose joint was picked last; "" when that is
+ * no manikin. Its percentile: the one it was made at, else its stature's
+ * rank in its population (when loaded).
+ */
+static void
+manikin_status(const struct daemon *d, char *dest, size_t len)
+{
+	const struct env *e = &d->env;
+	const struct interact *ia = d->interact;
+	int fig = ia && ia->mode != INTERACT_NONE ? ia->fig : -1;
+	for (int i = 0; fig < 0 && i < ENV_MAX_FIGURES; i++)
+		if (e->fig[i].gen && e->fig[i].is_human && e->fig[i].manikin.ghost)
+			for (int j = 0; fig < 0 && j < ENV_MAX_FIGURES; j++)
+				if (e->fig[j].gen && e->fig[j].is_human && !e->fig[j].manikin.ghost &&
+				    !strcmp(e->fig[j].manikin.family, e->fig[i].manikin.family))
+					fig = j;
+	if (fig < 0 && d->picked.fig >= 0 && d->picked.fig < ENV_MAX_FIGURES &&
+	    e->fig[d->picked.fig].gen == d->picked.gen)
+		fig = d->picked.fig;
+	dest[0] = 0;
+	if (fig < 0 || fig >= ENV_MAX_FIGURES || !e->fig[fig].gen || !e->fig[fig].manikin.population[0])
+		return;
+	const struct env_figure *f = &e->fig[fig];
+	const struct env_manikin *mk = &f->manikin;
+	double pct = mk->percentile;
+	const struct population *p = populations_find(&d->pops, mk->population);
+	if (isnan(pct) && p)
+		population_stature_rank(p, f->human.sex, 1000 * f->human.stature, &pct, NULL, 0);
+	int n = snprintf(dest, len, "   %s: %s %.0f mm", f->name,
+			 f->human.sex == HUMAN_FEMALE ? "female" : "male", 1000 * f->human.stature);
+	if (n > 0 && (size_t)n < len && !isnan(pct))
+		n += snprintf(dest + n, len - (size_t)n, ", P%.*f", pct == floor(pct) ? 0 : 1, pct);
+	if (n > 0 && (size_t)n < len)
+		snprintf(dest + n, len - (size_t)n, " of %s", mk->population);
+}
+
+/*
  * The message and status lines, width pixels wide, for view v: the edit
  * line in the kiosk's view (a prompt, a value), else the view's figures;
  * the operator's refusal, while there is one, over the daemon's message.
@@ -241,14 +281,15 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 	const struct env_view *vw = &d->env.view[v];
 	const struct interact *ia = d->interact;
 	int manipulating = ia && ia->mode != INTERACT_NONE && ia->view == v;
-	char status[VIEW_TEXT_LEN];
+	char status[VIEW_TEXT_LEN], who[96];
 	int caret = v == daemon_kiosk_view(d) ? edit_line(d, width, status, sizeof status) : -1;
+	manikin_status(d, who, sizeof who);
 	if (caret < 0 && sc->replaying) /* the live timings are not the replay's: pictures stay alike */
-		snprintf(status, sizeof status, "%s   frame %llu   replay", vw->name,
+		snprintf(status, sizeof status, "%s%s   frame %llu   replay", vw->name, who,
 			 (unsigned long long)d->stats.frame);
 	else if (caret < 0)
 		snprintf(status, sizeof status,
-			 "%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
+			 "%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name, who,
 			 (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
 			 d->stats.draw_us / 1000);
 	view_add_status(sc->dl, status, manipulating && ia->message[0] ? ia->message : d->message,
@@ -274,7 +315,10 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 		if (!f->gen)
 			continue;
 		figure_meshes(sc, f, i);
-		view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
+		if (f->is_human && f->manikin.ghost)
+			view_add_figure_ghost(sc->dl, f->model, f->state, sc->mesh_base[i], SCENE_GHOST_ALPHA);
+		else
+			view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
 		int dragged = manipulating && ia->mode == INTERACT_DRAG && ia->fig == i;
 		if (!vw->icons && !dragged)
 			continue;

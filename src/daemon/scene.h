@@ -34,6 +34,9 @@
  */
 #define SCENE_FILES_NICE 10
 
+/* the opacity of a ghost: a family's manikins overlaid on the selected one (arrange family) */
+#define SCENE_GHOST_ALPHA 0.3f
+
 /* the band at the bottom of a layout's screen: its message and status (edit) lines */
 #define SCENE_BAND (2 * VIEW_LINE_PX)
 

@@ -278,21 +278,28 @@ view_mesh_tess(enum view_mesh k, int fine, struct tess_mesh *dest)
 	return -1;
 }
 
-/* the instances of m's geoms; fig < 0: coloured by segment with shadows, else flat id colours */
+/*
+ * The instances of m's geoms; fig < 0: coloured by segment with shadows (alpha < 1: a
+ * ghost, translucent and without them), else flat id colours.
+ */
 static int
 add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base,
-	   int fig, const unsigned char *skip_seg)
+	   int fig, const unsigned char *skip_seg, float alpha)
 {
 	int before = dl->ninst;
 	for (int g = 0; g < m->ngeom; g++) {
 		int seg = m->geom_seg[g];
 		if (skip_seg && skip_seg[seg])
 			continue;
-		float idc[4];
+		float idc[4], ghost[4];
 		const float *rgba = &m->seg_rgba[4 * seg];
 		if (fig >= 0) {
 			view_id_rgba(view_id(fig, seg), idc);
 			rgba = idc;
+		} else if (alpha < 1) {
+			memcpy(ghost, rgba, sizeof ghost);
+			ghost[3] *= alpha;
+			rgba = ghost;
 		}
 		struct view_part part[VIEW_GEOM_PARTS_MAX];
 		int n = view_geom_parts(m, g, part);
@@ -303,8 +310,8 @@ add_figure(struct drawlist *dl, const struct model *m, const struct state *s, in
 			view_mat_from_xform(&x, part[k].scale, mat);
 			if (part[k].model_mesh >= 0)
 				view_add_instance(dl, mesh_base + part[k].model_mesh, mat, rgba,
-						  fig < 0);
-			else if (fig >= 0) /* an id map casts no shadow */
+						  fig < 0 && alpha >= 1);
+			else if (fig >= 0 || alpha < 1) /* an id map or a ghost casts no shadow */
 				view_add_instance(dl, part[k].mesh, mat, rgba, 0);
 			else
 				add_unit(dl, part[k].mesh, &x, part[k].scale, rgba,
@@ -317,7 +324,14 @@ add_figure(struct drawlist *dl, const struct model *m, const struct state *s, in
 int
 view_add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base)
 {
-	return add_figure(dl, m, s, mesh_base, -1, NULL);
+	return add_figure(dl, m, s, mesh_base, -1, NULL, 1);
+}
+
+int
+view_add_figure_ghost(struct drawlist *dl, const struct model *m, const struct state *s,
+		      int mesh_base, float alpha)
+{
+	return add_figure(dl, m, s, mesh_base, -1, NULL, alpha);
 }
 
 uint32_t
@@ -340,14 +354,14 @@ int
 view_add_figure_ids(struct drawlist *dl, const struct model *m, const struct state *s,
 		    int mesh_base, int fig)
 {
-	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, NULL);
+	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, NULL, 1);
 }
 
 int
 view_add_figure_ids_except(struct drawlist *dl, const struct model *m, const struct state *s,
 			   int mesh_base, int fig, const unsigned char *skip_seg)
 {
-	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, skip_seg);
+	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, skip_seg, 1);
 }
 
 /* ---- lines, triangles and text --------------------------------------------- */

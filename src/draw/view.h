@@ -214,6 +214,13 @@ int view_add_figure(struct drawlist *dl, const struct model *m, const struct sta
 		    int mesh_base);
 
 /*
+ * The same as a translucent ghost: each colour's alpha times alpha (0 < alpha < 1),
+ * no shadow; drawn after the opaque instances, so the figures it overlays show through.
+ */
+int view_add_figure_ghost(struct drawlist *dl, const struct model *m, const struct state *s,
+			  int mesh_base, float alpha);
+
+/*
  * Object ids for a visibility map (render_hemicube): figure slot fig
  * (0 .. 254) and segment seg (0 .. 65534) as one 24 bit number, never 0
  * (0 is "nothing"), and as the flat colour that draws it exactly.

@@ -282,6 +282,51 @@ population_percentile(const struct population *p, enum human_sex sex, double pct
 	return 0;
 }
 
+int
+population_stature_rank(const struct population *p, enum human_sex sex, double mm, double *pct,
+			char *err, size_t errlen)
+{
+	const struct population_group *g = group(p, sex, err, errlen);
+	if (!g)
+		return -1;
+	if (!g->stature)
+		return fail(err, errlen, "the population has no stature");
+	if (!isfinite(mm))
+		return fail(err, errlen, "a stature is a number");
+	const double *s = g->stature;
+	int n = g->n;
+	/* lo: the first at or above mm; hi: the last at or below it */
+	int a = 0, b = n;
+	while (a < b) {
+		int m = (a + b) / 2;
+		if (s[m] < mm)
+			a = m + 1;
+		else
+			b = m;
+	}
+	int lo = a;
+	a = 0, b = n;
+	while (a < b) {
+		int m = (a + b) / 2;
+		if (s[m] <= mm)
+			a = m + 1;
+		else
+			b = m;
+	}
+	int hi = a - 1;
+	double h;
+	if (lo <= hi) /* people of exactly that stature: the middle of their ranks */
+		h = 0.5 * (lo + hi);
+	else if (hi < 0)
+		h = 0;
+	else if (lo >= n)
+		h = n - 1;
+	else /* between two order statistics */
+		h = hi + (mm - s[hi]) / (s[lo] - s[hi]);
+	*pct = n > 1 ? 100 * h / (n - 1) : 50;
+	return 0;
+}
+
 /* the given columns checked: present, in range, distinct, values finite */
 static int
 check_given(const struct population *p, const int *cols, const double *vals, int k, char *err,

@@ -78,6 +78,14 @@ int population_percentile(const struct population *p, enum human_sex sex, double
 			  char *err, size_t errlen);
 
 /*
+ * The inverse: the percentile (0 to 100) at which the sex's interpolated
+ * stature is mm; where several people share that stature, the middle of
+ * their ranks. 0 below the shortest, 100 above the tallest.
+ */
+int population_stature_rank(const struct population *p, enum human_sex sex, double mm,
+			    double *pct, char *err, size_t errlen);
+
+/*
  * The conditional expectation of every column of the population given k of
  * them (cols[i] = vals[i]; k = 0: the means): dest[POPULATION_NCOL], NAN
  * where the population lacks the column. *dist, when not NULL, gets the

@@ -47,6 +47,7 @@ static const struct group_key group_table[] = {
 	{ "load", "human", G_FIGURES },
 	{ "load", "family", G_FIGURES },
 	{ "load", "population", G_FIGURES },
+	{ "arrange", "family", G_FIGURES },
 	{ "load", "figure", G_FIGURES },
 	{ "unload", "figure", G_FIGURES },
 	{ "list", "figures", G_FIGURES },

@@ -48,6 +48,7 @@ struct env_manikin {
 	char family[MODEL_NAME_MAX]; /* the family it is one of ("": none), its prefix */
 	int member;         /* its number in the family: 0 the centre */
 	double coverage;    /* the family's coverage, 0 to 1 (NAN: not one of a family) */
+	int ghost;          /* drawn as a translucent ghost (a family overlaid: not the selected one) */
 };
 
 struct env_figure {

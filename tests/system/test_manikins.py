@@ -372,3 +372,39 @@ def test_end_to_end_a_built_manikin_measures_like_the_population(daemon):
                     coef, *_ = np.linalg.lstsq(X, d[m], rcond=None)
                     ref = np.sqrt(np.mean((X @ coef - d[m]) ** 2))
                     assert ours <= 1.1 * ref, (sex, m, ours, ref)
+
+
+def pelvis(c, fig):
+    return site(c, fig, "pelvis.root")[0]
+
+
+def test_arrange_family_in_a_row_and_overlaid(daemon):
+    with daemon.client() as c:
+        c.request("load family fam sex=both n=3")
+        c.request("set location fam_male_1 2 0.95 -1 yaw=30deg")  # one has wandered off
+        names = [f"fam_{s}_{i}" for s in ("female", "male") for i in range(4)]
+        before = {n: pelvis(c, n) for n in names}
+        mean = np.mean([before[n] for n in names], axis=0)
+        r = c.request("arrange family fam row spacing=0.9")
+        assert [f["name"] for f in r["figures"]] == names
+        after = {n: pelvis(c, n) for n in names}
+        for k, n in enumerate(names):
+            want_x = mean[0] + (k - 3.5) * 0.9
+            assert after[n][0] == pytest.approx(want_x, abs=1e-12), n
+            assert after[n][2] == pytest.approx(mean[2], abs=1e-12), n
+            assert after[n][1] == pytest.approx(before[n][1], abs=1e-12), n  # heights kept
+        turned = site(c, "fam_male_1", "pelvis.root")[1]
+        assert turned[0, 2] == pytest.approx(math.sin(math.radians(30)), abs=1e-12)  # turn kept
+        c.request("arrange family fam overlay selected=fam_male_2")
+        listed = figures(c)
+        for n in names:
+            assert listed[n]["ghost"] == (n != "fam_male_2")
+            assert pelvis(c, n)[[0, 2]] == pytest.approx(mean[[0, 2]], abs=1e-12)
+        # ghosts are kept by sessions and undone like any change
+        c.request("save session s.ses")
+        c.request("undo")
+        assert not any(f["ghost"] for n, f in figures(c).items())
+        c.request("load session s.ses")
+        assert [n for n, f in figures(c).items() if not f["ghost"]] == ["fam_male_2"]
+        c.request("arrange family fam row")
+        assert not any(f["ghost"] for f in figures(c).values())
