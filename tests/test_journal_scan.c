@@ -148,6 +148,43 @@ test_damage_with_a_whole_record_after_it_is_in_the_middle(void **unused)
 	free(text);
 }
 
+/* a journal written before checksums is read as it was written; one with a record of
+ * today's after such lines is not, and its first line is damage in the middle */
+static void
+test_a_journal_of_before_checksums_is_read_without_them(void **unused)
+{
+	(void)unused;
+	const char *old = "1 C load human as jack\n2 C behave jack on\n3 P q jack 0.5,0.25\n";
+	struct journal_scan s;
+	journal_scan(old, strlen(old), &s);
+	assert_true(s.unchecked);
+	assert_int_equal(s.damage, JOURNAL_WHOLE);
+	assert_int_equal(s.records, 3);
+	assert_int_equal(s.good, strlen(old));
+	/* torn as a crash tears it: the piece without its end of line is the tail */
+	const char *torn = "1 C load human as jack\n2 C behave jack on\n3 P q jack 0.";
+	journal_scan(torn, strlen(torn), &s);
+	assert_true(s.unchecked);
+	assert_int_equal(s.damage, JOURNAL_TAIL);
+	assert_int_equal(s.records, 2);
+	/* a line of before, then a record with its checksum: not a journal of before */
+	size_t n;
+	char *rec = journal_record_format(2, 'C', "behave jack on", 14, &n);
+	char mixed[200];
+	snprintf(mixed, sizeof mixed, "1 C load human as jack\n%.*s", (int)n, rec);
+	free(rec);
+	journal_scan(mixed, strlen(mixed), &s);
+	assert_false(s.unchecked);
+	assert_int_equal(s.damage, JOURNAL_MIDDLE);
+	assert_int_equal(s.records, 0);
+	/* today's journals are never read without their checksums */
+	rec = journal_record_format(1, 'C', "load human as jack", 18, &n);
+	journal_scan(rec, n, &s);
+	free(rec);
+	assert_false(s.unchecked);
+	assert_int_equal(s.records, 1);
+}
+
 int
 main(void)
 {
@@ -156,6 +193,7 @@ main(void)
 		cmocka_unit_test(test_a_record_is_its_line_and_its_checksum),
 		cmocka_unit_test(test_whole_records_and_a_damaged_tail),
 		cmocka_unit_test(test_damage_with_a_whole_record_after_it_is_in_the_middle),
+		cmocka_unit_test(test_a_journal_of_before_checksums_is_read_without_them),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

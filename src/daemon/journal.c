@@ -267,7 +267,7 @@ journal_replay_text(struct journal *j, struct daemon *d, const char *text, size_
 	for (const char *p = text, *end = text + s.good; p < end;) {
 		const char *nl = memchr(p, '\n', (size_t)(end - p)), *why;
 		struct journal_record r;
-		journal_record_parse(p, (size_t)(nl - p), &r, &why); /* whole: the scan said so */
+		journal_scan_parse(&s, p, (size_t)(nl - p), &r, &why); /* whole: the scan said so */
 		if (r.seq > snap_seq)
 			replay_record(d, &r);
 		j->seq = r.seq;
@@ -280,6 +280,13 @@ journal_replay_text(struct journal *j, struct daemon *d, const char *text, size_
 			snprintf(after, sizeof after, "after record %" PRIu64, s.last_seq);
 		fprintf(stderr, "postured: journal %s: the last %zu bytes (from byte %zu, %s) are "
 			"not a whole record (%s): dropped\n", j->path, len - s.good, s.good, after, s.why);
+	}
+	if (s.unchecked && s.records) {
+		/* records of before are read as they were; a snapshot at once (journal_open)
+		 * empties the file, so no record with a checksum is ever added after them */
+		fprintf(stderr, "postured: journal %s: written before records had checksums; its %" PRIu64
+			" records are read without them\n", j->path, s.records);
+		j->unchecked = 1;
 	}
 	*keep = s.good;
 	return 0;
@@ -320,6 +327,12 @@ journal_open(struct journal *j, struct daemon *d, char *err, size_t errlen)
 		if (daemon_step_abandon(d, err, errlen) < 0 || journal_step(j, 'A') < 0)
 			return -1;
 		fprintf(stderr, "postured: a step was under way when the daemon stopped: taken back\n");
+	}
+	if (j->unchecked) {
+		if (journal_snapshot(j, d, 1) < 0)
+			return say(err, errlen, "%s: cannot replace the journal written before checksums "
+				   "with a snapshot: %s", j->path, strerror(errno));
+		j->unchecked = 0;
 	}
 	note_postures(j, d);
 	return 0;

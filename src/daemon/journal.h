@@ -44,6 +44,7 @@ struct journal {
 	uint64_t since_snap; /* records since the last snapshot */
 	uint64_t size;       /* bytes of whole records in the file */
 	int torn;            /* a failed write left a piece of a record after them */
+	int unchecked;       /* the file read at start was written before records had checksums */
 	uint64_t posture_hash[ENV_MAX_FIGURES]; /* postures as the journal knows them */
 	uint32_t posture_gen[ENV_MAX_FIGURES];
 };

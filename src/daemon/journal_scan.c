@@ -51,6 +51,29 @@ lower_hex(char c)
 	return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
 }
 
+/* "SEQ KIND BODY" in the first n bytes of line: 0, or -1 */
+static int
+parse_head(const char *line, size_t n, struct journal_record *r)
+{
+	size_t i = 0;
+	uint64_t seq = 0;
+	for (; i < n && line[i] >= '0' && line[i] <= '9'; i++) {
+		unsigned d = (unsigned)(line[i] - '0');
+		if (seq > (UINT64_MAX - d) / 10)
+			return -1;
+		seq = seq * 10 + d;
+	}
+	/* a number without leading zeros, one printable kind between single spaces */
+	if (i == 0 || line[0] == '0' || i + 3 > n || line[i] != ' ' || line[i + 1] <= ' ' ||
+	    line[i + 1] > '~' || line[i + 2] != ' ')
+		return -1;
+	r->seq = seq;
+	r->kind = line[i + 1];
+	r->body = line + i + 3;
+	r->len = n - (i + 3);
+	return 0;
+}
+
 int
 journal_record_parse(const char *line, size_t len, struct journal_record *r, const char **why)
 {
@@ -70,23 +93,39 @@ journal_record_parse(const char *line, size_t len, struct journal_record *r, con
 		*why = "its checksum does not match";
 		return -1;
 	}
-	size_t i = 0;
-	uint64_t seq = 0;
-	for (; i < n && line[i] >= '0' && line[i] <= '9'; i++) {
-		unsigned d = (unsigned)(line[i] - '0');
-		if (seq > (UINT64_MAX - d) / 10)
-			return -1;
-		seq = seq * 10 + d;
+	return parse_head(line, n, r);
+}
+
+int
+journal_record_parse_unchecked(const char *line, size_t len, struct journal_record *r,
+			       const char **why)
+{
+	*why = "not a record";
+	return parse_head(line, len, r);
+}
+
+/*
+ * A journal written before records had checksums: its first line is a
+ * record without one, and no line of it is a record with one.
+ */
+static int
+written_before_checksums(const char *text, const char *end)
+{
+	struct journal_record r;
+	const char *why;
+	const char *nl = memchr(text, '\n', (size_t)(end - text));
+	if (!nl || journal_record_parse(text, (size_t)(nl - text), &r, &why) == 0 ||
+	    journal_record_parse_unchecked(text, (size_t)(nl - text), &r, &why) < 0)
+		return 0;
+	for (const char *p = text; p < end;) {
+		nl = memchr(p, '\n', (size_t)(end - p));
+		if (!nl)
+			break;
+		if (journal_record_parse(p, (size_t)(nl - p), &r, &why) == 0)
+			return 0;
+		p = nl + 1;
 	}
-	/* a number without leading zeros, one printable kind between single spaces */
-	if (i == 0 || line[0] == '0' || i + 3 > n || line[i] != ' ' || line[i + 1] <= ' ' ||
-	    line[i + 1] > '~' || line[i + 2] != ' ')
-		return -1;
-	r->seq = seq;
-	r->kind = line[i + 1];
-	r->body = line + i + 3;
-	r->len = n - (i + 3);
-	return 0;
+	return 1;
 }
 
 static int
@@ -111,7 +150,7 @@ damaged(const char *text, const char *p, const char *q, const char *end, const c
 		const char *ignored;
 		if (!nl)
 			break;
-		if (journal_record_parse(q, (size_t)(nl - q), &r, &ignored) == 0) {
+		if (journal_scan_parse(s, q, (size_t)(nl - q), &r, &ignored) == 0) {
 			s->damage = JOURNAL_MIDDLE;
 			s->next = (size_t)(q - text);
 			s->next_seq = r.seq;
@@ -121,11 +160,20 @@ damaged(const char *text, const char *p, const char *q, const char *end, const c
 	}
 }
 
+int
+journal_scan_parse(const struct journal_scan *s, const char *line, size_t len,
+		   struct journal_record *r, const char **why)
+{
+	return s->unchecked ? journal_record_parse_unchecked(line, len, r, why)
+			    : journal_record_parse(line, len, r, why);
+}
+
 void
 journal_scan(const char *text, size_t len, struct journal_scan *s)
 {
 	memset(s, 0, sizeof *s);
 	const char *p = text, *end = text + len;
+	s->unchecked = written_before_checksums(text, end);
 	while (p < end) {
 		const char *nl = memchr(p, '\n', (size_t)(end - p)), *why;
 		struct journal_record r;
@@ -133,7 +181,7 @@ journal_scan(const char *text, size_t len, struct journal_scan *s)
 			damaged(text, p, NULL, end, "a record cut short, with no end of line", s);
 			return;
 		}
-		if (journal_record_parse(p, (size_t)(nl - p), &r, &why) < 0) {
+		if (journal_scan_parse(s, p, (size_t)(nl - p), &r, &why) < 0) {
 			damaged(text, p, nl + 1, end, why, s);
 			return;
 		}

@@ -40,6 +40,13 @@ struct journal_record {
  */
 int journal_record_parse(const char *line, size_t len, struct journal_record *r, const char **why);
 
+/*
+ * A record as journals wrote them before records had checksums, "SEQ KIND
+ * BODY" with nothing after the body: 0, or -1 with *why.
+ */
+int journal_record_parse_unchecked(const char *line, size_t len, struct journal_record *r,
+				   const char **why);
+
 enum journal_damage {
 	JOURNAL_WHOLE,  /* nothing but whole records */
 	JOURNAL_TAIL,   /* whole records, then bytes that are none: dropped */
@@ -52,6 +59,7 @@ struct journal_scan {
 	uint64_t records;  /* how many */
 	uint64_t last_seq; /* the last one's number (0: none) */
 	const char *why;   /* what is wrong at byte good (damage only) */
+	int unchecked;     /* written before checksums: records without them, read as such */
 	size_t next;       /* JOURNAL_MIDDLE: the byte where the first whole record after it starts */
 	uint64_t next_seq; /* ... and its number */
 };
@@ -61,5 +69,9 @@ struct journal_scan {
  * SEQ the one before it plus 1); the first may have any number.
  */
 void journal_scan(const char *text, size_t len, struct journal_scan *s);
+
+/* one line as a record of the kind the scan found the journal written in */
+int journal_scan_parse(const struct journal_scan *s, const char *line, size_t len,
+		       struct journal_record *r, const char **why);
 
 #endif
