@@ -225,7 +225,10 @@ def make_targets():
 
 
 def buildable(path):
-    """a build/ path the Makefile makes: a program, a test or a benchmark"""
+    """a build/ path the Makefile makes: a program, a test, a benchmark or a fuzz harness"""
+    f = re.fullmatch(r"build/fuzz/bin/(fuzz_\w+)", path)
+    if f:
+        return (ROOT / "tests" / "fuzz" / f"{f[1]}.c").exists()
     m = re.fullmatch(r"build/(rel|san)/(bin|tests|bench)/([\w-]+)", path)
     if not m:
         return False
