@@ -12,6 +12,7 @@
 #include "figure/human.h"
 #include "figure/kin.h"
 #include "figure/model.h"
+#include "figure/population.h"
 #include "figure/state.h"
 #include "export/bvh.h"
 #include "export/gltf.h"
@@ -76,6 +77,39 @@ parse_double(const char *s, double *dest)
 	errno = 0;
 	*dest = strtod(s, &end);
 	return s[0] && !*end && !errno && isfinite(*dest) ? 0 : -1;
+}
+
+/*
+ * The measures not given, as the daemon's `load human NAME=MM ...` has them:
+ * the built-in population's conditional expectation given the others (its
+ * stature and mass included), so a manikin is the same whichever builds it.
+ */
+static int
+complete_measures(struct human_def *hd, int stature_set, int mass_set)
+{
+	int cols[HUMAN_MEASURE_N], k = 0;
+	double vals[HUMAN_MEASURE_N], all[POPULATION_NCOL];
+	char err[256];
+	if (stature_set) {
+		hd->measure[HUMAN_M_STATURE] = hd->stature * 1000;
+		hd->measure_given |= 1u << HUMAN_M_STATURE;
+	}
+	if (mass_set) {
+		hd->measure[HUMAN_M_WEIGHTKG] = hd->mass;
+		hd->measure_given |= 1u << HUMAN_M_WEIGHTKG;
+	}
+	for (int j = 0; j < HUMAN_MEASURE_N; j++)
+		if (hd->measure_given >> j & 1u) {
+			cols[k] = population_column(anthro_name((enum human_measure)j));
+			vals[k++] = hd->measure[j];
+		}
+	if (population_predict(population_ansur2(), hd->sex, cols, vals, k, all, NULL, err,
+			       sizeof err) < 0) {
+		fprintf(stderr, "posture-figure: %s\n", err);
+		return -1;
+	}
+	population_to_human(all, hd);
+	return 0;
 }
 
 static int
@@ -187,6 +221,8 @@ parse_options(int argc, char **argv, struct options *o)
 		fprintf(stderr, "posture-figure: --measure is for the built-in human, not --figure\n");
 		return -1;
 	}
+	if (given && complete_measures(&o->hdef, stature_set, mass_set) < 0)
+		return -1;
 	if (!o->command) {
 		fprintf(stderr, "posture-figure: no command\n%s", usage);
 		return -1;

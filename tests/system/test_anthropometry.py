@@ -9,6 +9,7 @@ import pathlib
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from conftest import FIGURES, ROOT, run_tool
@@ -109,22 +110,25 @@ def test_landmark_offsets_are_the_datas(sex):
 
 
 @pytest.mark.parametrize("sex", ["male", "female"])
-def test_measures_not_given_take_the_datas_ratios(sex):
-    """Built from stature and weight alone, a measure that closes no set takes ANSUR II's mean
-    ratio to stature (the script's, 5 decimals); the rest follow from the landmarks' means."""
-    want = script_output()[sex]
-    stature = 1700.0
-    got = measured(*measure_args(sex, {"stature": stature, "weightkg": 70}))
-    for name in ("trochanterionheight", "kneeheightmidpatella", "lateralmalleolusheight",
-                 "acromialheight", "acromionradialelength", "radialestylionlength", "handlength",
-                 "footlength", "biacromialbreadth"):
-        assert got[name] == pytest.approx(want[name] * stature, abs=0.5e-5 * stature + 1e-9), name
-    assert got["weightkg"] == pytest.approx(70, abs=1e-9)
-    # the seat, the eyes and the knee follow from the landmarks' ANSUR means
-    assert got["sittingheight"] == pytest.approx(
-        stature - got["trochanterionheight"] + want["seat"] * stature, abs=0.05 * stature / 1000)
-    assert got["hipbreadth"] == pytest.approx(2 * want["trochanterion_x"] * stature,
-                                              abs=1e-4 * stature)
+def test_posture_figure_predicts_what_is_not_given_as_the_daemon_does(daemon, sex):  # noqa: F811
+    """posture-figure --measure makes the manikin `load human` makes from the same measures:
+    the others are the population's conditional expectation, equal to numpy's regression on
+    the subjects; the given ones are met."""
+    d = subjects(sex)
+    given = {"stature": 1700.0, "weightkg": 70.0, "sittingheight": 890.0}
+    got = measured(*measure_args(sex, given))
+    with daemon.client() as c:
+        c.request("load human as m sex=%s stature=1.7 weightkg=70 sittingheight=890" % sex)
+        want = c.request("get anthropometry m")["measures"]
+    X = np.array([[1.0] + [s[g] for g in given] for s in d])
+    x = np.array([1.0] + list(given.values()))
+    for k in MEASURES:
+        assert got[k] == pytest.approx(want[k], abs=1e-6), k
+        if k in given:
+            assert got[k] == pytest.approx(given[k], abs=2.0 if k != "weightkg" else 1e-9), k
+        else:
+            coef, *_ = np.linalg.lstsq(X, np.array([s[k] for s in d]), rcond=None)
+            assert got[k] == pytest.approx(float(x @ coef), abs=1e-6), k
 
 
 def test_get_anthropometry_measures_without_moving_the_figure(daemon, tmp_path):  # noqa: F811
