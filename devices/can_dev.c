@@ -244,12 +244,12 @@ can_dev_gone(struct can_dev *d, uint64_t now_us, struct input_queue *q, int err)
 {
 	int released = d->map ? can_input_release_all(&d->in, now_us, q, 0) : 0;
 	if (err)
-		devlog(&d->link_log, now_us, err == ENODEV ? DEVLOG_DEVICE : DEVLOG_KERNEL,
-		       "interface %s gone (%s); %d button(s) released", d->iface, strerror(err),
-		       released);
+		devlog_last(&d->link_log, now_us, err == ENODEV ? DEVLOG_DEVICE : DEVLOG_KERNEL,
+			    "interface %s gone (%s); %d button(s) released", d->iface, strerror(err),
+			    released);
 	else
-		devlog(&d->link_log, now_us, DEVLOG_KERNEL,
-		       "gone (end of the stream); %d button(s) released", released);
+		devlog_last(&d->link_log, now_us, DEVLOG_KERNEL,
+			    "gone (end of the stream); %d button(s) released", released);
 	input_queue_removed(q, now_us, d->in.device, INPUT_CLASS_PANEL);
 }
 

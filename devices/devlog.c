@@ -29,8 +29,9 @@ blame_to_str(enum devlog_blame b)
 	return "?";
 }
 
-int
-devlog(struct devlog *l, uint64_t now_us, enum devlog_blame blame, const char *fmt, ...)
+static int
+vdevlog(struct devlog *l, uint64_t now_us, int always, enum devlog_blame blame, const char *fmt,
+	va_list ap)
 {
 	FILE *out = l->out ? l->out : stderr;
 	if (now_us - l->window_t0 >= DEVLOG_WINDOW_US || now_us < l->window_t0) {
@@ -40,16 +41,33 @@ devlog(struct devlog *l, uint64_t now_us, enum devlog_blame blame, const char *f
 		l->lines = 0;
 		l->suppressed = 0;
 	}
-	if (l->lines >= DEVLOG_BURST) {
+	if (l->lines >= DEVLOG_BURST && !always) {
 		l->suppressed++;
 		return 0;
 	}
 	l->lines++;
-	va_list ap;
-	va_start(ap, fmt);
 	fprintf(out, "posture: %s: %s: ", l->who, blame_to_str(blame));
 	vfprintf(out, fmt, ap);
 	fputc('\n', out);
-	va_end(ap);
 	return 1;
+}
+
+int
+devlog(struct devlog *l, uint64_t now_us, enum devlog_blame blame, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	int r = vdevlog(l, now_us, 0, blame, fmt, ap);
+	va_end(ap);
+	return r;
+}
+
+int
+devlog_last(struct devlog *l, uint64_t now_us, enum devlog_blame blame, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	int r = vdevlog(l, now_us, 1, blame, fmt, ap);
+	va_end(ap);
+	return r;
 }

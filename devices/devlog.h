@@ -31,4 +31,11 @@ void devlog_init(struct devlog *l, const char *who);
 int devlog(struct devlog *l, uint64_t now_us, enum devlog_blame blame, const char *fmt, ...)
 	__attribute__((format(printf, 4, 5)));
 
+/*
+ * The same, written whatever the window holds: a source's last line (its
+ * device gone), which comes once and says what became of it.
+ */
+int devlog_last(struct devlog *l, uint64_t now_us, enum devlog_blame blame, const char *fmt, ...)
+	__attribute__((format(printf, 4, 5)));
+
 #endif

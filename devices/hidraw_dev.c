@@ -544,7 +544,7 @@ hidraw_dev_gone(struct hidraw_dev *d, uint64_t now_us, struct input_queue *q, co
 	for (unsigned c = 0; c < HID_INPUT_CODES; c++)
 		held += d->in.held[c] != 0;
 	hid_input_release_all(&d->in, now_us, q);
-	devlog(&d->in.log, now_us, blame, "gone (%s); %d key(s) and button(s) released", why, held);
+	devlog_last(&d->in.log, now_us, blame, "gone (%s); %d key(s) and button(s) released", why, held);
 	input_queue_removed(q, now_us, d->in.device, d->info.cls);
 }
 

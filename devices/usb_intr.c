@@ -116,7 +116,7 @@ usb_intr_reap(struct usb_intr *u, uint64_t now_us, struct input_queue *q)
 	for (unsigned c = 0; c < HID_INPUT_CODES; c++)
 		held += u->in.held[c] != 0;
 	hid_input_release_all(&u->in, now_us, q);
-	devlog(&u->in.log, now_us, DEVLOG_DEVICE, "gone; %d key(s) and button(s) released", held);
+	devlog_last(&u->in.log, now_us, DEVLOG_DEVICE, "gone; %d key(s) and button(s) released", held);
 	input_queue_removed(q, now_us, u->in.device, u->cls);
 	return -1;
 }
