@@ -19,7 +19,8 @@ TESTLIBS := -lcmocka -lnlopt
 # NLopt is the independent minimiser the IK tests and benchmarks compare against;
 # only tests and benchmarks link it
 BENCHLIBS := -lnlopt
-SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+# float-cast-overflow: GCC leaves it out of -fsanitize=undefined (clang has it in)
+SAN     := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=all
 
 # where everything is built; another folder lets two builds of one tree run side by side
 BUILD   ?= build

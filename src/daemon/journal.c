@@ -80,32 +80,55 @@ journal_snapshot(struct journal *j, const struct daemon *d, int force)
 	return 0;
 }
 
-/* reads "checkpoint LEN\n" + LEN bytes entries; returns the rest or NULL */
+/*
+ * The line at p, before end, into buf without its newline; the byte after
+ * it, or NULL when there is no whole line shorter than size. The text is
+ * read within its length: it need not end in a NUL.
+ */
+static const char *
+line_at(const char *p, const char *end, char *buf, size_t size)
+{
+	const char *nl = memchr(p, '\n', (size_t)(end - p));
+	if (!nl || (size_t)(nl - p) >= size)
+		return NULL;
+	memcpy(buf, p, (size_t)(nl - p));
+	buf[nl - p] = 0;
+	return nl + 1;
+}
+
+/* "WORD N", N decimal and at most max: N, or -1 */
+static long long
+counted(const char *line, const char *word, unsigned long long max)
+{
+	size_t n = strlen(word);
+	if (strncmp(line, word, n) || line[n] != ' ' || line[n + 1] < '0' || line[n + 1] > '9')
+		return -1;
+	char *e;
+	errno = 0;
+	unsigned long long v = strtoull(line + n + 1, &e, 10);
+	return *e || errno || v > max ? -1 : (long long)v;
+}
+
+/* "NAME N", then N entries "checkpoint LEN\n" + LEN bytes; returns the rest or NULL */
 static const char *
 read_checkpoints(const char *p, const char *end, const char *name, struct checkpoints *dest)
 {
-	int n;
-	char word[16];
-	if (sscanf(p, "%15s %d\n", word, &n) != 2 || strcmp(word, name) || n < 0 || n > DAEMON_UNDO_MAX)
+	char line[64];
+	long long n = (p = line_at(p, end, line, sizeof line)) ? counted(line, name, DAEMON_UNDO_MAX) : -1;
+	if (n < 0)
 		return NULL;
-	p = memchr(p, '\n', (size_t)(end - p));
-	if (!p)
-		return NULL;
-	p++;
-	for (int i = 0; i < n; i++) {
-		size_t len;
-		if (sscanf(p, "checkpoint %zu\n", &len) != 1)
+	for (long long i = 0; i < n; i++) {
+		long long len = (p = line_at(p, end, line, sizeof line))
+					? counted(line, "checkpoint", (unsigned long long)(end - p))
+					: -1;
+		if (len < 0)
 			return NULL;
-		p = memchr(p, '\n', (size_t)(end - p));
-		if (!p || len > (size_t)(end - p - 1))
-			return NULL;
-		p++;
-		char *text = malloc(len + 1);
+		char *text = malloc((size_t)len + 1);
 		if (!text)
 			return NULL;
-		memcpy(text, p, len);
+		memcpy(text, p, (size_t)len);
 		text[len] = 0;
-		daemon_checkpoints_push(dest, text, len);
+		daemon_checkpoints_push(dest, text, (size_t)len);
 		p += len;
 	}
 	return p;
