@@ -42,7 +42,7 @@ DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian liburdfdom-tools nod
 GLTF_VALIDATOR := gltf-validator@2.0.0-dev.3.10
 
 # the layers, bottom up; each folder includes only from those before it (make layer-check)
-LAYERS    := figure pose draw export interact daemon
+LAYERS    := figure pose assess draw export interact daemon
 MAIN_SRC  := src/daemon/main.c
 LIB_SRC   := $(filter-out $(MAIN_SRC),$(foreach l,$(LAYERS),$(wildcard src/$(l)/*.c)) $(wildcard devices/*.c))
 TOOL_SRC  := $(wildcard tools/*.c)

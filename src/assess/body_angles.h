@@ -1,0 +1,87 @@
+/*
+ * body_angles.h - the angles the posture assessments are scored from,
+ * measured on a human figure (figure/human.h) as the methods define them:
+ * body planes from the pelvis and the shoulders, the trunk from the
+ * vertical, the limbs and the neck relative to the trunk.
+ *
+ * Degrees. Signs: flexion +, extension -; side bend and twist + to the
+ * figure's left; abduction + away from the midline; wrist deviation +
+ * radial; wrist twist + pronation. Lengths in metres. Nothing allocates.
+ */
+#ifndef POSTURE_BODY_ANGLES_H
+#define POSTURE_BODY_ANGLES_H
+
+#include <stddef.h>
+
+#include "figure/model.h"
+#include "figure/state.h"
+
+enum body_side {
+	BODY_LEFT,
+	BODY_RIGHT,
+};
+
+struct body_arm {
+	double upper_arm_flexion;   /* in the trunk's sagittal plane, from the trunk's down axis */
+	double upper_arm_abduction; /* in the trunk's coronal plane, from the trunk's down axis */
+	double upper_arm_rotation;  /* internal + */
+	double shoulder_elevation;  /* the clavicle's elevation */
+	double elbow_flexion;       /* 0 = straight */
+	double wrist_flexion;
+	double wrist_deviation;
+	double wrist_twist;         /* forearm pronation +, supination - */
+	double wrist_twist_fraction; /* |twist| over the range's end on that side: 0 mid, 1 at the end */
+	double hand_across_midline; /* m the hand's palm lies past the midsagittal plane (+ crossed) */
+	double hand_out_to_side;    /* m the palm lies outside the shoulder joint, away from the body */
+	double elbow_above_shoulder; /* m the elbow lies above the shoulder joint centre */
+	double hand_above_shoulder;  /* m the palm lies above the shoulder joint centre */
+};
+
+struct body_leg {
+	double hip_flexion;   /* thigh relative to the pelvis */
+	double knee_flexion;  /* 0 = straight */
+	double weight_share;  /* 0..1 of the body's weight over this foot (balance.h's weight_l) */
+	int foot_on_floor;    /* the foot bears weight (balance.h's contact height) */
+	int kneeling;         /* the knee's front within the kneel height of the floor */
+};
+
+struct body_angles {
+	double trunk_flexion;   /* the trunk axis (hips' midpoint to T1) in the sagittal plane vs vertical */
+	double trunk_side_bend; /* the same in the coronal plane */
+	double trunk_twist;     /* the shoulder line against the hip line, about the trunk axis */
+	double hip_trunk_angle; /* between the trunk axis and the thighs' mean axis: 180 standing */
+	double neck_flexion;    /* head relative to the trunk */
+	double neck_side_bend;
+	double neck_twist;
+	struct body_arm arm[2];  /* enum body_side */
+	struct body_leg leg[2];
+	int seated;             /* as the caller says (behave_params.seated) */
+	int legs_on_floor;      /* how many feet bear weight */
+};
+
+/*
+ * Measures the angles of human figure m in state s (frames current:
+ * kin_update). seated comes from the figure's behaviour; kneel_height (m)
+ * from struct assess_config. Returns 0, or -1 with why in err for a figure
+ * without the built-in human's joints and sites.
+ */
+int body_angles_measure(const struct model *m, const struct state *s, int seated,
+			double kneel_height, struct body_angles *dest, char *err, size_t errlen);
+
+/*
+ * The angles by name, for `get angles`: "trunk_flexion", "upper_arm_flexion_l",
+ * "knee_flexion_r", "weight_share_l", ... in a fixed order; unit "deg", "m",
+ * "fraction" or "flag". body_angle_value reads angle i of a.
+ */
+struct body_angle_name {
+	const char *name;
+	const char *unit;
+	const char *what; /* one line: how it is measured */
+};
+extern const struct body_angle_name body_angle_names[];
+extern const size_t body_angle_count;
+double body_angle_value(const struct body_angles *a, size_t i);
+/* the index of a name, -1 when unknown */
+int body_angle_find(const char *name);
+
+#endif
