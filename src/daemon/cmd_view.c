@@ -135,6 +135,29 @@ cmd_set_camera(struct cmd_ctx *c)
 	return 0;
 }
 
+/*
+ * set view VIEW tint=rula|reba|owas|off: the humans in the view coloured
+ * by that assessment's part scores (view_tint.h), or in their own colours
+ */
+int
+cmd_set_view(struct cmd_ctx *c)
+{
+	static const char *const keys[] = { "tint" };
+	int v = view_of(c, c->argv[0]);
+	if (v < 0 || only_keys(c, 1, keys, 1) < 0)
+		return -1;
+	const char *tint = cmd_key(c, "tint");
+	int t = tint ? env_tint_find(tint) : -1;
+	if (!tint)
+		return cmd_fail(c, "arity", "set view VIEW tint=rula|reba|owas|off");
+	if (t < 0)
+		return cmd_fail(c, "bad-argument", "tint=rula|reba|owas|off, not '%.40s'", tint);
+	c->d->env.view[v].tint = t;
+	json_object_set_new(c->result, "view", json_string(c->d->env.view[v].name));
+	json_object_set_new(c->result, "tint", json_string(env_tint_str(t)));
+	return 0;
+}
+
 int
 cmd_delete_view(struct cmd_ctx *c)
 {
@@ -235,6 +258,7 @@ cmd_list_views(struct cmd_ctx *c)
 		json_object_set_new(o, "target", cmd_vec(v->target, 3));
 		json_object_set_new(o, "fovy", json_real(v->fovy_deg));
 		json_object_set_new(o, "icons", json_boolean(v->icons));
+		json_object_set_new(o, "tint", json_string(env_tint_str(v->tint)));
 		json_array_append_new(list, o);
 	}
 	json_object_set_new(c->result, "views", list);

@@ -279,12 +279,13 @@ view_mesh_tess(enum view_mesh k, int fine, struct tess_mesh *dest)
 }
 
 /*
- * the instances of m's geoms; fig < 0: coloured by segment, with shadows
- * when alpha is 1 (translucent, alpha < 1: none), else flat id colours
+ * the instances of m's geoms; fig < 0: coloured by segment (seg_rgba's
+ * colours, or the model's when NULL), with shadows when alpha is 1
+ * (translucent, alpha < 1: none), else flat id colours
  */
 static int
 add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base,
-	   int fig, const unsigned char *skip_seg, float alpha)
+	   int fig, const unsigned char *skip_seg, float alpha, const float *seg_rgba)
 {
 	int before = dl->ninst;
 	int shadows = fig < 0 && alpha >= 1;
@@ -293,7 +294,7 @@ add_figure(struct drawlist *dl, const struct model *m, const struct state *s, in
 		if (skip_seg && skip_seg[seg])
 			continue;
 		float rgba[4];
-		memcpy(rgba, &m->seg_rgba[4 * seg], sizeof rgba);
+		memcpy(rgba, &(seg_rgba ? seg_rgba : m->seg_rgba)[4 * seg], sizeof rgba);
 		if (fig >= 0)
 			view_id_rgba(view_id(fig, seg), rgba);
 		else if (alpha < 1)
@@ -321,14 +322,21 @@ add_figure(struct drawlist *dl, const struct model *m, const struct state *s, in
 int
 view_add_figure(struct drawlist *dl, const struct model *m, const struct state *s, int mesh_base)
 {
-	return add_figure(dl, m, s, mesh_base, -1, NULL, 1);
+	return add_figure(dl, m, s, mesh_base, -1, NULL, 1, NULL);
+}
+
+int
+view_add_figure_rgba(struct drawlist *dl, const struct model *m, const struct state *s,
+		     int mesh_base, const float *seg_rgba)
+{
+	return add_figure(dl, m, s, mesh_base, -1, NULL, 1, seg_rgba);
 }
 
 int
 view_add_figure_ghost(struct drawlist *dl, const struct model *m, const struct state *s,
 		      int mesh_base, float alpha)
 {
-	return add_figure(dl, m, s, mesh_base, -1, NULL, alpha);
+	return add_figure(dl, m, s, mesh_base, -1, NULL, alpha, NULL);
 }
 
 uint32_t
@@ -351,14 +359,14 @@ int
 view_add_figure_ids(struct drawlist *dl, const struct model *m, const struct state *s,
 		    int mesh_base, int fig)
 {
-	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, NULL, 1);
+	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, NULL, 1, NULL);
 }
 
 int
 view_add_figure_ids_except(struct drawlist *dl, const struct model *m, const struct state *s,
 			   int mesh_base, int fig, const unsigned char *skip_seg)
 {
-	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, skip_seg, 1);
+	return add_figure(dl, m, s, mesh_base, fig < 0 ? 0 : fig, skip_seg, 1, NULL);
 }
 
 /* ---- lines, triangles and text --------------------------------------------- */

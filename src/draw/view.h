@@ -214,7 +214,16 @@ int view_add_figure(struct drawlist *dl, const struct model *m, const struct sta
 		    int mesh_base);
 
 /*
- * The same with every geom translucent, its colour's alpha times alpha
+ * The same with each segment in a colour of the caller's: seg_rgba holds
+ * 4 floats (r, g, b, alpha) for each of m's segments, in place of the
+ * model's seg_rgba (an assessment's tint, say: draw knows no more than
+ * the colours). Returns the instances added.
+ */
+int view_add_figure_rgba(struct drawlist *dl, const struct model *m, const struct state *s,
+			 int mesh_base, const float *seg_rgba);
+
+/*
+ * view_add_figure's with every geom translucent, its colour's alpha times alpha
  * (0 < alpha < 1: drawn after the opaque ones, blended), casting no
  * shadow: a ghost beside the figures drawn solid. Returns the instances.
  */

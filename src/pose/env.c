@@ -257,6 +257,23 @@ env_find_view(const struct env *e, const char *name)
 	return -1;
 }
 
+static const char *const tint_names[ENV_TINT_N] = { "off", "rula", "reba", "owas" };
+
+const char *
+env_tint_str(int tint)
+{
+	return tint >= 0 && tint < ENV_TINT_N ? tint_names[tint] : "?";
+}
+
+int
+env_tint_find(const char *name)
+{
+	for (int i = 0; i < ENV_TINT_N; i++)
+		if (!strcmp(tint_names[i], name))
+			return i;
+	return -1;
+}
+
 void
 env_place_site(struct env *e, int fig, int site, const struct xform *loc)
 {

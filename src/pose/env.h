@@ -116,6 +116,19 @@ struct env_show {
 	double spacing;                /* ENV_SHOW_ROW: metres between neighbours' places */
 };
 
+/*
+ * What a view's tint colours the humans' body parts by: nothing (their own
+ * colours), or a posture assessment's part scores (the daemon's
+ * assessment; this layer only keeps the choice).
+ */
+enum env_tint {
+	ENV_TINT_OFF,
+	ENV_TINT_RULA,
+	ENV_TINT_REBA,
+	ENV_TINT_OWAS,
+	ENV_TINT_N,
+};
+
 /* a named view (§1.7: several graphics windows), its camera aimed at a point */
 struct env_view {
 	int used;
@@ -124,6 +137,7 @@ struct env_view {
 	double eye[3], target[3];
 	double fovy_deg; /* vertical field of view, degrees, kept as given so it reads back exactly */
 	int icons; /* 1: the manipulation icons, balance and goals */
+	int tint;  /* enum env_tint: the humans' parts coloured by an assessment's part scores */
 };
 
 struct env {
@@ -174,6 +188,9 @@ int env_solver_index(const struct env *e, int slot);
 
 /* a view by name, or -1 */
 int env_find_view(const struct env *e, const char *name);
+/* a tint's name ("off", "rula", "reba", "owas"; "?" out of range), and back (-1: none such) */
+const char *env_tint_str(int tint);
+int env_tint_find(const char *name);
 
 /*
  * Moves site `site` of figure fig to loc (its segment's frame), marking it
