@@ -60,7 +60,7 @@ cmd_save_session(struct cmd_ctx *c)
 	if (cmd_path(c, c->argv[0], 1, path, sizeof path) < 0)
 		return -1;
 	size_t len;
-	char *text = session_to_string(&c->d->env, &len);
+	char *text = daemon_session_text(c->d, &len);
 	if (!text)
 		return cmd_fail(c, "internal", "out of memory");
 	int rc = statefile_write(path, text, len);
@@ -100,7 +100,7 @@ step_history(struct cmd_ctx *c, struct checkpoints *from, struct checkpoints *to
 	if (!from->n)
 		return cmd_fail(c, "nothing", "nothing to %s", what);
 	size_t now_len;
-	char *now = session_to_string(&c->d->env, &now_len);
+	char *now = daemon_session_text(c->d, &now_len);
 	if (!now)
 		return cmd_fail(c, "internal", "out of memory");
 	int top = from->n - 1;
