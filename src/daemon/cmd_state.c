@@ -241,14 +241,16 @@ sub_kinds(struct cmd_ctx *c, unsigned *kinds)
 	} names[] = { { "posture", SUB_POSTURE }, { "telemetry", SUB_TELEMETRY },
 		      { "message", SUB_MESSAGE }, { "frame", SUB_FRAME },
 		      { "stability", SUB_STABILITY }, { "alert", SUB_ALERT },
-		      { "input", SUB_INPUT }, { "kiosk", SUB_KIOSK } };
+		      { "input", SUB_INPUT }, { "kiosk", SUB_KIOSK },
+		      { "assessment", SUB_ASSESSMENT } };
 	for (size_t i = 0; i < sizeof names / sizeof *names; i++)
 		if (!strcmp(c->argv[0], names[i].name)) {
 			*kinds = names[i].kind;
 			return 0;
 		}
 	return cmd_fail(c, "bad-argument",
-			"events are posture, telemetry, message, frame, stability, alert, input or kiosk");
+			"events are posture, telemetry, message, frame, stability, alert, input, kiosk "
+			"or assessment");
 }
 
 static int
