@@ -462,6 +462,59 @@ test_session_from_before_the_landmarks_loads(void **unused)
 	env_clear(&e);
 }
 
+/*
+ * The assessments' settings (set assess) ride in a session: every key
+ * written, read back bit for bit; a session from before them (before 4)
+ * reads with the defaults (version 1 here); a key unknown, out of its range or not a number
+ * loads nothing and leaves the settings as they were.
+ */
+static void
+test_assess_settings_round_trip_and_old_sessions_take_the_defaults(void **unused)
+{
+	(void)unused;
+	static struct env e, back;
+	char err[300];
+	size_t len, olen;
+	struct assess_config cfg = assess_config_default(), got, def = assess_config_default();
+	assert_int_equal(assess_config_set(&cfg, "shoulder_raised", 12.5, err, sizeof err), 0);
+	assert_int_equal(assess_config_set(&cfg, "out_to_side", 0.1 + 0.2, err, sizeof err), 0);
+	env_init(&e);
+	char *text = session_to_string_with(&e, &cfg, &len);
+	assert_non_null(text);
+	assert_non_null(strstr(text, "session 4\n"));
+	assert_non_null(strstr(text, " shoulder_raised=12.5 "));
+	env_init(&back);
+	assert_int_equal(session_read_with(text, len, ".", NULL, &back, &got, err, sizeof err), 0);
+	assert_memory_equal(&got, &cfg, sizeof cfg);
+	free(text);
+	/* written without settings, or older: the defaults */
+	text = session_to_string(&e, &len);
+	assert_null(strstr(text, "assess"));
+	got = cfg;
+	assert_int_equal(session_read_with(text, len, ".", NULL, &back, &got, err, sizeof err), 0);
+	assert_memory_equal(&got, &def, sizeof def);
+	free(text);
+	char *old = slurp("tests/sessions/landmarks/saved.session", &olen);
+	assert_true(!strncmp(old, "session 1\n", 10)); /* older than the settings */
+	got = cfg;
+	assert_int_equal(session_read_with(old, olen, ".", NULL, &back, &got, err, sizeof err), 0);
+	assert_memory_equal(&got, &def, sizeof def);
+	env_clear(&back);
+	free(old);
+	const char *bad[] = { "session 4\nassess shoulder_raised=99\nend\n",
+			      "session 4\nassess shoulder_rised=10\nend\n",
+			      "session 4\nassess shoulder_raised=ten\nend\n",
+			      "session 4\nassess shoulder_raised\nend\n" };
+	for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+		got = cfg;
+		env_init(&back);
+		assert_int_equal(session_read_with(bad[i], strlen(bad[i]), ".", NULL, &back, &got, err,
+						   sizeof err), -1);
+		assert_non_null(strstr(err, "line 2: assess"));
+		assert_memory_equal(&got, &cfg, sizeof cfg);
+	}
+}
+
 int
 main(void)
 {
@@ -475,6 +528,7 @@ main(void)
 		cmocka_unit_test(test_bad_sessions_load_nothing),
 		cmocka_unit_test(test_posture_file_applies_by_name_and_checks_first),
 		cmocka_unit_test(test_session_from_before_the_landmarks_loads),
+		cmocka_unit_test(test_assess_settings_round_trip_and_old_sessions_take_the_defaults),
 	};
 	return cmocka_run_group_tests_name("session", tests, NULL, NULL);
 }

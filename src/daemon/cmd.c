@@ -254,7 +254,7 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	int checkpoint = (e->flags & CMD_MUTATES) && !(e->flags & CMD_NO_UNDO) && e->fn != cmd_undo &&
 			 e->fn != cmd_redo &&
 			 !(client == DAEMON_CLIENT_JOURNAL && d->step.open);
-	if (checkpoint && !(before = session_to_string(&d->env, &before_len))) {
+	if (checkpoint && !(before = daemon_session_text(d, &before_len))) {
 		out->json = dump_reply(0, w.tag, NULL, "internal", "out of memory");
 		return;
 	}

@@ -60,7 +60,7 @@ cmd_save_session(struct cmd_ctx *c)
 	if (cmd_path(c, c->argv[0], 1, path, sizeof path) < 0)
 		return -1;
 	size_t len;
-	char *text = session_to_string(&c->d->env, &len);
+	char *text = daemon_session_text(c->d, &len);
 	if (!text)
 		return cmd_fail(c, "internal", "out of memory");
 	int rc = statefile_write(path, text, len);
@@ -100,7 +100,7 @@ step_history(struct cmd_ctx *c, struct checkpoints *from, struct checkpoints *to
 	if (!from->n)
 		return cmd_fail(c, "nothing", "nothing to %s", what);
 	size_t now_len;
-	char *now = session_to_string(&c->d->env, &now_len);
+	char *now = daemon_session_text(c->d, &now_len);
 	if (!now)
 		return cmd_fail(c, "internal", "out of memory");
 	int top = from->n - 1;
@@ -241,14 +241,16 @@ sub_kinds(struct cmd_ctx *c, unsigned *kinds)
 	} names[] = { { "posture", SUB_POSTURE }, { "telemetry", SUB_TELEMETRY },
 		      { "message", SUB_MESSAGE }, { "frame", SUB_FRAME },
 		      { "stability", SUB_STABILITY }, { "alert", SUB_ALERT },
-		      { "input", SUB_INPUT }, { "kiosk", SUB_KIOSK } };
+		      { "input", SUB_INPUT }, { "kiosk", SUB_KIOSK },
+		      { "assessment", SUB_ASSESSMENT } };
 	for (size_t i = 0; i < sizeof names / sizeof *names; i++)
 		if (!strcmp(c->argv[0], names[i].name)) {
 			*kinds = names[i].kind;
 			return 0;
 		}
 	return cmd_fail(c, "bad-argument",
-			"events are posture, telemetry, message, frame, stability, alert, input or kiosk");
+			"events are posture, telemetry, message, frame, stability, alert, input, kiosk "
+			"or assessment");
 }
 
 static int

@@ -75,14 +75,37 @@ daemon_replace_env(struct daemon *d, const char *text, size_t len, char *err, si
 		return -1;
 	}
 	env_init(fresh);
-	if (session_read(text, len, d->state_dir, d->library_dir, fresh, err, errlen) < 0) {
+	struct assess_config cfg;
+	if (session_read_with(text, len, d->state_dir, d->library_dir, fresh, &cfg, err, errlen) < 0) {
 		free(fresh);
 		return -1;
 	}
 	env_clear(&d->env);
 	d->env = *fresh;
 	free(fresh);
+	daemon_set_assess_config(d, &cfg);
 	return 0;
+}
+
+struct assess_config
+daemon_assess_config(const struct daemon *d)
+{
+	return d->assess_cfg_set ? d->assess_cfg : assess_config_default();
+}
+
+void
+daemon_set_assess_config(struct daemon *d, const struct assess_config *cfg)
+{
+	d->assess_cfg = *cfg;
+	d->assess_cfg_set = 1;
+	d->assess_serial++;
+}
+
+char *
+daemon_session_text(const struct daemon *d, size_t *len)
+{
+	struct assess_config cfg = daemon_assess_config(d);
+	return session_to_string_with(&d->env, &cfg, len);
 }
 
 int
@@ -91,7 +114,7 @@ daemon_step_begin(struct daemon *d, int fig, const char *mode)
 	struct daemon_step *st = &d->step;
 	if (st->open)
 		return 0;
-	if (!(st->before = session_to_string(&d->env, &st->len)))
+	if (!(st->before = daemon_session_text(d, &st->len)))
 		return -1;
 	st->open = 1;
 	st->fig = fig;
@@ -125,7 +148,7 @@ daemon_step_end(struct daemon *d)
 	if (!st->open)
 		return 0;
 	size_t len;
-	char *now = session_to_string(&d->env, &len);
+	char *now = daemon_session_text(d, &len);
 	/* a click that moved nothing is no step to undo */
 	int changed = !now || len != st->len || memcmp(now, st->before, len);
 	free(now);

@@ -8,6 +8,7 @@
 
 #include <stdint.h>
 
+#include "assess/assess.h"
 #include "devices/can_map.h"
 #include "devices/input_devs.h"
 #include "devices/queue.h"
@@ -22,6 +23,7 @@
 #include "daemon/populations.h"
 
 struct kms_times_summary; /* draw/kms_pick.h */
+struct assess_live;       /* daemon/assess_live.h */
 
 #define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
 #define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
@@ -89,6 +91,7 @@ enum sub_kind {
 	SUB_ALERT = 1 << 5,     /* the stability margin crossing its threshold */
 	SUB_INPUT = 1 << 6,     /* every input event, decoded, as the loop takes it */
 	SUB_KIOSK = 1 << 7,     /* the kiosk's mode and step, as they change */
+	SUB_ASSESSMENT = 1 << 8, /* a figure's RULA, REBA and OWAS scores, as they change */
 };
 
 /* the client a command comes from when no connection sent it */
@@ -200,6 +203,16 @@ struct daemon {
 	int screen_w, screen_h; /* the kiosk's screen: the framebuffer's, or --screen */
 	uint64_t held_max_us; /* a mouse button held this long ends its drag (set input held=) */
 	struct pick_cache picks;
+	/*
+	 * The assessments' settings (set assess), kept in sessions, undo and
+	 * the journal; read them with daemon_assess_config (the defaults until
+	 * set). Every change counts in assess_serial, so cached scores go stale.
+	 */
+	struct assess_config assess_cfg;
+	int assess_cfg_set;
+	uint64_t assess_serial;
+	/* each figure's assessment now (assess_live.h); NULL until first asked */
+	struct assess_live *assess_live;
 };
 
 /* frees the undo and redo texts */
@@ -228,7 +241,8 @@ int daemon_kiosk_figure(const struct daemon *d);
 int daemon_is_ghost(const struct daemon *d, int fig);
 
 /*
- * Replaces the environment with the session in text; nothing changes on
+ * Replaces the environment and the assessments' settings with the session
+ * in text (a session without settings: the defaults); nothing changes on
  * error (0, or -1 with err).
  */
 int daemon_replace_env(struct daemon *d, const char *text, size_t len, char *err, size_t errlen);
@@ -270,6 +284,18 @@ int daemon_pick(struct daemon *d, const struct ray *r, double tmin, int skip, st
 		int *fig);
 /* frees every cached pick model */
 void daemon_picks_free(struct daemon *d);
+
+/* the assessments' settings now: those set (set assess, a session), else the defaults */
+struct assess_config daemon_assess_config(const struct daemon *d);
+/* the assessments' settings replaced; what was scored under the old ones goes stale */
+void daemon_set_assess_config(struct daemon *d, const struct assess_config *cfg);
+
+/*
+ * The whole state a session file, an undo checkpoint and a snapshot keep:
+ * the environment and the assessments' settings, as text (malloc'd; NULL
+ * when out of memory).
+ */
+char *daemon_session_text(const struct daemon *d, size_t *len);
 
 /* lets a kept text go (file_read, file_given) */
 void daemon_text_clear(struct daemon_text *t);

@@ -4,6 +4,10 @@
 #include <libevdev/libevdev.h>
 #include <linux/input-event-codes.h>
 #include <stdio.h>
+#include <string.h>
+
+#include "daemon/assess_json.h"
+#include "daemon/assess_live.h"
 
 int
 events_init(struct events *E, struct server *srv, const struct daemon *d)
@@ -371,4 +375,60 @@ events_input(struct events *E, const struct input_event_rec *e, long px, long py
 	}
 	jbuf_raw(j, "}");
 	events_send(E, SUB_INPUT);
+}
+
+/* ---- assessments ----------------------------------------------------------- */
+
+void
+events_assessment_retell(struct events *E)
+{
+	memset(E->told_assess, 0, sizeof E->told_assess);
+}
+
+/* what an event says of a figure's assessment, for comparing with what was told */
+static void
+assess_told_of(const struct assess_live_fig *a, uint32_t gen, struct events_assess_told *t)
+{
+	memset(t, 0, sizeof *t);
+	t->gen = gen;
+	for (int k = 0; k < ASSESS_NMETHODS; k++) {
+		const struct assess_result *r = &a->res[k];
+		t->m[k].score = r->score;
+		t->m[k].action_level = r->action_level;
+		t->m[k].side = r->side;
+		t->m[k].worst = r->worst;
+		t->m[k].nparts = r->nparts < ASSESS_MAX_PARTS ? r->nparts : ASSESS_MAX_PARTS;
+		for (int i = 0; i < t->m[k].nparts; i++)
+			t->m[k].part[i] = r->part[i].score;
+		memcpy(t->m[k].code, r->code, sizeof t->m[k].code);
+	}
+}
+
+void
+events_assessment(struct events *E, struct daemon *d)
+{
+	if (!events_wanted(E, SUB_ASSESSMENT))
+		return;
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		const struct env_figure *f = &d->env.fig[i];
+		if (!f->gen || !f->is_human)
+			continue;
+		const struct assess_live_fig *a = assess_live_of(d, i);
+		if (!a)
+			continue;
+		struct events_assess_told now;
+		assess_told_of(a, f->gen, &now);
+		if (!memcmp(&now, &E->told_assess[i], sizeof now))
+			continue;
+		memcpy(&E->told_assess[i], &now, sizeof now);
+		struct jbuf *j = events_begin(E, "assessment", f->name);
+		for (int k = 0; k < ASSESS_NMETHODS; k++) {
+			jbuf_key(j, assess_json_method((enum assess_method)k), 0);
+			assess_json_summary(j, &a->res[k]);
+		}
+		jbuf_key(j, "load_kg", 0);
+		jbuf_num(j, a->load_kg);
+		jbuf_raw(j, "}");
+		events_send(E, SUB_ASSESSMENT);
+	}
 }

@@ -10,6 +10,7 @@
 
 #include <stdint.h>
 
+#include "assess/assess.h"
 #include "daemon/daemon.h"
 #include "daemon/jbuf.h"
 #include "daemon/server.h"
@@ -19,6 +20,16 @@
 #define EVENTS_BUF (1u << 20)       /* the largest event: a frame's PNG in base64 */
 #define EVENTS_LIMITS_REPORTED 256 /* dofs listed as resting on a limit */
 
+/* what an assessment event told of a figure: compared to know when its scores change */
+struct events_assess_told {
+	uint32_t gen; /* 0: nothing told */
+	struct {
+		int score, action_level, side, worst, nparts;
+		int part[ASSESS_MAX_PARTS];
+		char code[8];
+	} m[ASSESS_NMETHODS];
+};
+
 struct events {
 	struct server *srv;     /* the clients and their subscriptions */
 	const struct daemon *d; /* what the events tell of */
@@ -27,6 +38,7 @@ struct events {
 	uint32_t told_gen[ENV_MAX_FIGURES];
 	int limit_dofs[EVENTS_LIMITS_REPORTED];
 	char told_kiosk[256]; /* the kiosk's state as the last kiosk event told it */
+	struct events_assess_told told_assess[ENV_MAX_FIGURES];
 };
 
 /* 0, or -1 when out of memory (events_free cleans up either way) */
@@ -46,6 +58,14 @@ void events_send(struct events *E, unsigned kind);
 
 /* a posture event for every figure that changed since the last one, whoever moved it */
 void events_posture_changes(struct events *E);
+/*
+ * An assessment event for every human whose scores changed since the last
+ * one told them (any method's grand score, action level, side, worst part
+ * or a part's score; OWAS's code), computed only while someone subscribes.
+ */
+void events_assessment(struct events *E, struct daemon *d);
+/* every human's assessment told again at the next events_assessment (a client subscribed) */
+void events_assessment_retell(struct events *E);
 /* the message line under the pictures */
 void events_message(struct events *E);
 /*

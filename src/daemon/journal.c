@@ -45,7 +45,8 @@ write_checkpoints(FILE *f, const char *name, const struct checkpoints *c)
 int
 journal_state_write(const struct daemon *d, FILE *f)
 {
-	session_write(&d->env, f);
+	struct assess_config cfg = daemon_assess_config(d);
+	session_write_with(&d->env, &cfg, f);
 	write_checkpoints(f, "undo", &d->undo);
 	write_checkpoints(f, "redo", &d->redo);
 	if (populations_write(&d->pops, f) < 0)
@@ -147,9 +148,11 @@ journal_state_read(struct daemon *d, const char *body, size_t len, char *err, si
 		return say(err, errlen, "the session has no end");
 	stop += 5;
 	char msg[300];
-	if (session_read(body, (size_t)(stop - body), d->state_dir, d->library_dir, &d->env, msg,
-			 sizeof msg) < 0)
+	struct assess_config cfg;
+	if (session_read_with(body, (size_t)(stop - body), d->state_dir, d->library_dir, &d->env,
+			      &cfg, msg, sizeof msg) < 0)
 		return say(err, errlen, "%s", msg);
+	daemon_set_assess_config(d, &cfg);
 	const char *p = read_checkpoints(stop, end, "undo", &d->undo);
 	if (!p || !(p = read_checkpoints(p, end, "redo", &d->redo)))
 		return say(err, errlen, "bad undo history");

@@ -16,6 +16,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "daemon/assess_live.h"
 #include "daemon/cmd.h"
 #include "daemon/kiosk_route.h"
 #include "daemon/notify.h"
@@ -130,6 +131,8 @@ subscribe(struct daemon *d, int client, unsigned kinds, int on)
 	struct loop *L = d->loop;
 	if (client < 0 || client >= SERVER_MAX_CLIENTS || L->srv.c[client].fd < 0)
 		return -1;
+	if (on && (kinds & SUB_ASSESSMENT)) /* a new subscriber hears every figure's scores now */
+		events_assessment_retell(&L->events);
 	if (on)
 		L->srv.c[client].subs |= kinds;
 	else
@@ -604,7 +607,7 @@ loop_setup(struct loop *L, const struct loop_config *cfg)
 	L->scene.wall_us = loop_real_now;
 	L->period_us = (uint64_t)(1e6 / cfg->fps);
 	server_init(&L->srv);
-	if (events_init(&L->events, &L->srv, &L->d) < 0)
+	if (events_init(&L->events, &L->srv, &L->d) < 0 || assess_live_init(&L->d) < 0)
 		return -1;
 	if (cfg->panel_map) {
 		if (can_map_read(cfg->panel_map, &L->panel, err, sizeof err) < 0) {
@@ -794,6 +797,7 @@ loop_teardown(struct loop *L)
 	daemon_checkpoints_clear(&L->d.undo);
 	daemon_checkpoints_clear(&L->d.redo);
 	daemon_picks_free(&L->d);
+	assess_live_free(&L->d);
 	daemon_text_clear(&L->d.file_read); /* the last command's file, if it read one */
 	daemon_text_clear(&L->d.file_given);
 	kiosk_free(L->modes.kiosk);

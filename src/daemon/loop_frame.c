@@ -105,6 +105,7 @@ loop_command(struct loop *L, int client, const char *line, size_t len, struct cm
 		events_message(&L->events);
 	}
 	events_posture_changes(&L->events);
+	events_assessment(&L->events, &L->d);
 }
 
 int
@@ -200,6 +201,7 @@ loop_settle_frame(struct daemon *d, int *changed)
 	modes_frame(&L->modes, tape_clock(&L->tape)); /* a snap is eased over real time, settle or not */
 	int rc = frame(L, &clock, L->period_us, changed);
 	events_posture_changes(&L->events);
+	events_assessment(&L->events, &L->d);
 	return rc;
 }
 
@@ -228,6 +230,7 @@ loop_live_frame(struct loop *L)
 	moved |= changed || L->scene.dirty;
 	L->scene.dirty |= waiting || changed;
 	events_posture_changes(&L->events);
+	events_assessment(&L->events, &L->d);
 	uint64_t drawn = L->scene.drawn_us;
 	if (scene_publish(&L->scene, &L->d, &L->events, now)) {
 		/* rendering's share of the frame, smoothed: the solver gets the rest (§4.7.2) */

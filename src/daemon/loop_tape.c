@@ -147,7 +147,7 @@ loop_record(struct daemon *d, const char *dir, char *err, size_t errlen)
 	 * not hold (a solver's warm start, a behaviour's timers) starts afresh in both.
 	 */
 	size_t len;
-	char *text = session_to_string(&d->env, &len);
+	char *text = daemon_session_text(d, &len);
 	if (!text || daemon_replace_env(d, text, len, err, errlen) < 0) {
 		if (!text)
 			snprintf(err, errlen, "out of memory");

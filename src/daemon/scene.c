@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "daemon/assess_live.h"
 #include "daemon/family.h"
 #include "draw/sink.h"
 #include "draw/tiles.h"
@@ -248,17 +249,22 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 							  : -1;
 	/* the kiosk's figure, and where its size comes from, after the view's name */
 	int fig = daemon_kiosk_figure(d);
+	char scores[40] = ""; /* a human's RULA and REBA grand scores now (the font is ASCII's) */
 	if (fig >= 0) {
 		memcpy(who, "   ", 3);
 		family_describe(&d->env, fig, who + 3, sizeof who - 3);
+		const struct assess_live_fig *a = assess_live_of(d, fig);
+		if (a)
+			snprintf(scores, sizeof scores, "   RULA %d, REBA %d", a->res[ASSESS_RULA].score,
+				 a->res[ASSESS_REBA].score);
 	}
 	if (caret < 0 && sc->replaying) /* the live timings are not the replay's: pictures stay alike */
-		snprintf(status, sizeof status, "%s%s   frame %llu   replay", vw->name, who,
+		snprintf(status, sizeof status, "%s%s%s   frame %llu   replay", vw->name, who, scores,
 			 (unsigned long long)d->stats.frame);
 	else if (caret < 0)
 		snprintf(status, sizeof status,
-			 "%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
-			 who, (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
+			 "%s%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
+			 who, scores, (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
 			 d->stats.draw_us / 1000);
 	if (kiosk)
 		snprintf(d->status_line, sizeof d->status_line, "%s", status);

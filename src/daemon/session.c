@@ -14,6 +14,7 @@
 #include "daemon/family.h"
 #include "daemon/manikin.h"
 #include "daemon/words.h"
+#include "assess/assess.h"
 
 static const char *const pos_names[] = { "none", "point", "line", "plane" };
 static const char *const ori_names[] = { "none", "frame", "direction", "aim" };
@@ -119,8 +120,28 @@ write_behave(const struct env_figure *fg, FILE *f)
 	}
 }
 
+/* the assessments' settings, every key (a default that changes later leaves a session as it was) */
+static void
+write_assess(const struct assess_config *cfg, FILE *f)
+{
+	fprintf(f, "assess");
+	for (size_t k = 0; k < assess_config_nkeys; k++) {
+		const struct assess_config_key *key = &assess_config_keys[k];
+		double v;
+		memcpy(&v, (const char *)cfg + key->offset, sizeof v);
+		fprintf(f, " %s=%.17g", key->key, v);
+	}
+	fprintf(f, "\n");
+}
+
 int
 session_write(const struct env *e, FILE *f)
+{
+	return session_write_with(e, NULL, f);
+}
+
+int
+session_write_with(const struct env *e, const struct assess_config *cfg, FILE *f)
 {
 	fprintf(f, "session %d\nnext_gen %u\n", SESSION_VERSION, e->next_gen);
 	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
@@ -188,6 +209,8 @@ session_write(const struct env *e, FILE *f)
 		fprintf(f, "show family %s %s select=%s spacing=%.17g\n", e->show.family,
 			e->show.arrange == ENV_SHOW_ROW ? "row" : "overlay", e->fig[sel].name,
 			e->show.spacing);
+	if (cfg)
+		write_assess(cfg, f);
 	fprintf(f, "end\n");
 	return ferror(f) ? -1 : 0;
 }
@@ -195,12 +218,18 @@ session_write(const struct env *e, FILE *f)
 char *
 session_to_string(const struct env *e, size_t *len)
 {
+	return session_to_string_with(e, NULL, len);
+}
+
+char *
+session_to_string_with(const struct env *e, const struct assess_config *cfg, size_t *len)
+{
 	char *buf = NULL;
 	size_t n = 0;
 	FILE *f = open_memstream(&buf, &n);
 	if (!f)
 		return NULL;
-	int rc = session_write(e, f);
+	int rc = session_write_with(e, cfg, f);
 	if (fclose(f) != 0 || rc < 0) {
 		free(buf);
 		return NULL;
@@ -217,6 +246,7 @@ struct reader {
 	char *err;
 	size_t errlen;
 	struct words w;
+	struct assess_config assess; /* a session's: the defaults, then its assess line */
 };
 
 static int
@@ -694,16 +724,45 @@ read_show(struct reader *r, struct env *e)
 	return 0;
 }
 
+/* "assess KEY=VALUE ...": the assessments' settings (session 4); each key known and in range */
+static int
+read_assess(struct reader *r)
+{
+	for (int i = 1; i < r->w.n; i++) {
+		size_t klen;
+		const char *val = words_value(r->w.w[i], &klen);
+		char key[64], why[160];
+		double v;
+		if (!val || klen >= sizeof key)
+			return fail(r, "assess: KEY=VALUE, not '%.40s'", r->w.w[i]);
+		memcpy(key, r->w.w[i], klen);
+		key[klen] = '\0';
+		if (words_number(val, UNIT_NONE, &v) < 0)
+			return fail(r, "assess: %s is not a number", key);
+		if (assess_config_set(&r->assess, key, v, why, sizeof why) < 0)
+			return fail(r, "assess: %s", why);
+	}
+	return 0;
+}
+
 int
 session_read(const char *text, size_t len, const char *base_dir, const char *library_dir,
 	     struct env *dest, char *err, size_t errlen)
+{
+	return session_read_with(text, len, base_dir, library_dir, dest, NULL, err, errlen);
+}
+
+int
+session_read_with(const char *text, size_t len, const char *base_dir, const char *library_dir,
+		  struct env *dest, struct assess_config *cfg, char *err, size_t errlen)
 {
 	struct reader *r = malloc(sizeof *r);
 	if (!r) {
 		snprintf(err, errlen, "out of memory");
 		return -1;
 	}
-	*r = (struct reader){ text, text + len, 0, err, errlen, { 0 } };
+	*r = (struct reader){ .text = text, .end = text + len, .err = err, .errlen = errlen,
+			      .assess = assess_config_default() };
 	int rc = -1, got = next_line(r);
 	unsigned long version, next_gen = 0;
 	if (got <= 0 || r->w.n != 2 || strcmp(r->w.w[0], "session") ||
@@ -742,6 +801,8 @@ session_read(const char *text, size_t len, const char *base_dir, const char *lib
 			ok = read_behave(r, dest);
 		else if (!strcmp(kw, "attach"))
 			ok = read_attach(r, dest);
+		else if (!strcmp(kw, "assess"))
+			ok = read_assess(r);
 		else if (!strcmp(kw, "end"))
 			ok = 0, ended = 1;
 		else
@@ -757,6 +818,8 @@ session_read(const char *text, size_t len, const char *base_dir, const char *lib
 	}
 	if (next_gen)
 		dest->next_gen = (uint32_t)next_gen;
+	if (cfg)
+		*cfg = r->assess;
 	rc = 0;
 out:
 	if (rc < 0) {
@@ -796,7 +859,13 @@ int
 session_read_posture(struct env *e, int fig, const char *text, size_t len, char *err, size_t errlen)
 {
 	struct env_figure *fg = &e->fig[fig];
-	const struct model *m = fg->model;
+	return session_posture_onto(fg->model, fg->is_human, fg->state, text, len, err, errlen);
+}
+
+int
+session_posture_onto(const struct model *m, int is_human, struct state *s, const char *text,
+		     size_t len, char *err, size_t errlen)
+{
 	struct reader *r = malloc(sizeof *r);
 	double *q = malloc(sizeof *q * (size_t)(m->ndof + 1));
 	int rc = -1, got, root = -1;
@@ -806,8 +875,8 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 		snprintf(err, errlen, "out of memory");
 		goto out;
 	}
-	*r = (struct reader){ text, text + len, 0, err, errlen, { 0 } };
-	memcpy(q, fg->state->q, sizeof *q * (size_t)m->ndof);
+	*r = (struct reader){ .text = text, .end = text + len, .err = err, .errlen = errlen };
+	memcpy(q, s->q, sizeof *q * (size_t)m->ndof);
 	unsigned long version;
 	if (next_line(r) <= 0 || r->w.n != 2 || strcmp(r->w.w[0], "posture") ||
 	    read_uint(r->w.w[1], 1000000, &version) < 0 || version > POSTURE_VERSION) {
@@ -860,17 +929,17 @@ session_read_posture(struct env *e, int fig, const char *text, size_t len, char 
 		goto out;
 	}
 	/* everything checked: apply */
-	memcpy(fg->state->q, q, sizeof *q * (size_t)m->ndof);
+	memcpy(s->q, q, sizeof *q * (size_t)m->ndof);
 	if (root >= 0)
-		state_root_at(m, fg->state, root, &root_xf);
-	kin_update(m, fg->state);
+		state_root_at(m, s, root, &root_xf);
+	kin_update(m, s);
 	/* a human of another size: its feet as high as the file's were (it stands where that one stood) */
-	double shift = fg->is_human && !isnan(support) ? support - family_sole_height(m, fg->state) : 0;
+	double shift = is_human && !isnan(support) ? support - family_sole_height(m, s) : 0;
 	if (fabs(shift) > 1e-9) {
-		struct xform at = fg->state->root_xf;
+		struct xform at = s->root_xf;
 		at.p[1] += shift;
-		state_root_at(m, fg->state, fg->state->root_site, &at);
-		kin_update(m, fg->state);
+		state_root_at(m, s, s->root_site, &at);
+		kin_update(m, s);
 	}
 	rc = 0;
 out:
@@ -895,7 +964,7 @@ session_apply_line(struct env *e, const char *line, size_t len, char *err, size_
 		snprintf(err, errlen, "out of memory");
 		return -1;
 	}
-	*r = (struct reader){ line, line + len, 0, err, errlen, { 0 } };
+	*r = (struct reader){ .text = line, .end = line + len, .err = err, .errlen = errlen };
 	int rc = next_line(r);
 	if (rc > 0) {
 		if (!strcmp(r->w.w[0], "site"))

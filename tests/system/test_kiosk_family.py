@@ -249,7 +249,9 @@ def test_the_status_line_names_the_selected_manikin(daemon):
             press(c, "KEY_ESC")
             assert c.request("get kiosk")["figure"]["says"] == says
             c.request("render view main")
-            assert c.request("get kiosk")["status"].startswith(f"main   {says}   frame ")
+            # ... and the human's RULA and REBA grand scores now (test_assess.py checks them)
+            assert re.match(rf"main   {re.escape(says)}   RULA \d, REBA \d+   frame ",
+                            c.request("get kiosk")["status"])
         # a family shown: its selected one, Page Down and Page Up step through it, around
         c.request("show family f row")
         said = []
@@ -266,7 +268,7 @@ def test_the_status_line_names_the_selected_manikin(daemon):
         # ... as drawn: the band's text changes where the words differ, and only there
         band = pixels(c, "main")[380:400]
         line = c.request("get kiosk")["status"]
-        assert line.startswith("main   " + want[-1] + "   frame ")
+        assert re.match(rf"main   {re.escape(want[-1])}   RULA \d, REBA \d+   frame ", line)
         press(c, "KEY_PAGEDOWN")
         other = pixels(c, "main")[380:400]
         line2 = c.request("get kiosk")["status"]
