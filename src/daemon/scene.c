@@ -10,6 +10,7 @@
 
 #include "daemon/assess_live.h"
 #include "daemon/family.h"
+#include "daemon/tint.h"
 #include "draw/sink.h"
 #include "draw/tiles.h"
 #include "interact/menu_draw.h"
@@ -296,7 +297,12 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 					      FAMILY_GHOST_ALPHA);
 			continue;
 		}
-		view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
+		/* a tinted view: a human's parts in their part scores' colours (tint.h) */
+		const float *tinted = vw->tint ? tint_figure(&sc->tint, d, i, vw->tint) : NULL;
+		if (tinted)
+			view_add_figure_rgba(sc->dl, f->model, f->state, sc->mesh_base[i], tinted);
+		else
+			view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
 		int dragged = manipulating && ia->mode == INTERACT_DRAG && ia->fig == i;
 		if (!vw->icons && !dragged)
 			continue;
@@ -308,6 +314,7 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	if (manipulating)
 		scene_add_manip(sc->dl, ia);
 	add_hover(sc, d);
+	tint_legend(sc->dl, vw->tint);
 	/* the pop-up menu over everything, in the view it opened in */
 	if (d->menu && d->menu_view == v && menu_is_open(d->menu)) {
 		menu_layout(d->menu, &sc->menu_layout);

@@ -20,6 +20,7 @@
 #include "interact/menu.h"
 #include "daemon/daemon.h"
 #include "daemon/events.h"
+#include "daemon/tint.h"
 #include "draw/frame.h"
 #include "draw/frame_writer.h"
 #include "draw/render.h"
@@ -69,6 +70,7 @@ struct scene {
 	uint64_t (*cpu_us)(void); /* the calling thread's CPU time; NULL: not measured */
 	uint64_t (*wall_us)(void); /* the real clock (never a replay's); NULL: not measured */
 	int replaying;             /* a replay's pictures: the status line shows no timings */
+	struct tint tint;          /* a tinted view's colours (set view VIEW tint=...) */
 };
 
 void scene_init(struct scene *sc, const char *frames_dir);
