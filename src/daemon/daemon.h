@@ -124,6 +124,19 @@ struct daemon {
 	int (*flip_times)(struct daemon *d, struct kms_times_summary *dest);
 	/* the kiosk's screen now, as the framebuffer shows it (a layout's views tiled) */
 	int (*render_screen)(struct daemon *d, const struct frame **dest, char *err, size_t errlen);
+	/*
+	 * A picture for a file (scene_draw_picture): through v's camera at its
+	 * size, in its tint, of figure slot fig among the objects (-1: every
+	 * figure), no overlays; valid until the next rendering. NULL: none.
+	 */
+	int (*render_picture)(struct daemon *d, const struct env_view *v, int fig,
+			      const struct frame **dest, char *err, size_t errlen);
+	/*
+	 * The calendar's time now, seconds since the epoch (UTC), for what a file
+	 * says of when it was made; never the state's: a replay writes no file,
+	 * so nothing it replays reads it. NULL: none (tools, tests).
+	 */
+	int64_t (*calendar_s)(struct daemon *d);
 	char message[256]; /* the message line under the pictures (§1.7) */
 	/*
 	 * The state file the running command read (load posture, load session),

@@ -148,6 +148,24 @@ render_view(struct daemon *d, int v, const struct frame **dest, char *err, size_
 }
 
 static int
+render_picture(struct daemon *d, const struct env_view *v, int fig, const struct frame **dest,
+	       char *err, size_t errlen)
+{
+	struct loop *L = d->loop;
+	return scene_draw_picture(&L->scene, d, v, fig, dest, err, errlen);
+}
+
+/* the calendar, for a file's date: the one clock read outside the frame's (see daemon.h) */
+static int64_t
+calendar_s(struct daemon *d)
+{
+	(void)d;
+	struct timespec t;
+	clock_gettime(CLOCK_REALTIME, &t);
+	return (int64_t)t.tv_sec;
+}
+
+static int
 input_latencies(struct daemon *d, uint64_t *dest, int max)
 {
 	struct loop *L = d->loop;
@@ -579,6 +597,8 @@ loop_setup(struct loop *L, const struct loop_config *cfg)
 	L->d.subscribe = subscribe;
 	L->d.render_view = render_view;
 	L->d.render_screen = render_screen;
+	L->d.render_picture = render_picture;
+	L->d.calendar_s = calendar_s;
 	L->d.input_latencies = input_latencies;
 	L->d.flip_times = flip_times;
 	L->d.set_input = set_input;

@@ -340,6 +340,39 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	return 0;
 }
 
+int
+scene_draw_picture(struct scene *sc, struct daemon *d, const struct env_view *vw, int only,
+		   const struct frame **dest, char *err, size_t errlen)
+{
+	struct env *e = &d->env;
+	if (scene_ready(sc, err, errlen) < 0)
+		return -1;
+	struct camera cam;
+	view_camera_of_view(vw, &cam);
+	view_begin(sc->dl, &cam, vw->width, vw->height);
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		struct env_figure *f = &e->fig[i];
+		/* one human among the objects: the others (a family's members, ghosts) left out */
+		if (!f->gen || (only >= 0 && i != only && f->is_human) || daemon_is_ghost(d, i))
+			continue;
+		figure_meshes(sc, f, i);
+		const float *tinted = vw->tint ? tint_figure(&sc->tint, d, i, vw->tint) : NULL;
+		if (tinted)
+			view_add_figure_rgba(sc->dl, f->model, f->state, sc->mesh_base[i], tinted);
+		else
+			view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
+	}
+	tint_legend(sc->dl, vw->tint);
+	if (render_frame(sc->r, sc->dl, d->stats.frame, &sc->frame) < 0) {
+		snprintf(err, errlen, "render_frame failed");
+		return -1;
+	}
+	sc->frame.input_us = 0;
+	sc->frame.seq = d->stats.frame;
+	*dest = &sc->frame;
+	return 0;
+}
+
 /* the picture of a view as a frame event: its PNG (made on the files' thread) in base64 */
 static void
 frame_event(struct events *E, const char *view, const struct frame *f, const uint8_t *png,

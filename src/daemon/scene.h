@@ -105,6 +105,17 @@ int scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **d
 	       size_t errlen);
 
 /*
+ * A picture through vw's camera at its size (vw need not be one of the
+ * environment's views), for a file rather than the screen: the figures in
+ * vw's tint, no icons, status lines, pointer or menu. only >= 0: of the
+ * humans only figure slot only, with every figure that is not a human (the
+ * objects it works with); -1: every figure. Ghosts are left out. *dest
+ * stays valid until the next drawing. 0, or -1 with err.
+ */
+int scene_draw_picture(struct scene *sc, struct daemon *d, const struct env_view *vw, int only,
+		       const struct frame **dest, char *err, size_t errlen);
+
+/*
  * The kiosk's screen as the framebuffer shows it: with a layout, its views
  * drawn now and tiled; without, the first view. Valid until the next
  * drawing. 0, or -1 with err.
