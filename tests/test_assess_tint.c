@@ -8,6 +8,12 @@
  * Table A (or B) with every other index 1, then Table C with the other
  * group's score at its lowest, then the method's action levels. The cells
  * used are written beside each row.
+ *
+ * Then the tint's colours on a human (daemon/tint.h): with the right arm
+ * raised past 90 deg and the rest neutral, RULA colours the right upper arm
+ * yellow, the scored side's other parts and the trunk, head and legs green,
+ * the unscored left arm grey, the eyeballs their own colour; made again and
+ * again, the colours allocate nothing.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -15,9 +21,19 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <math.h>
 #include <string.h>
 
+#include "alloc_count.h"
+
 #include "assess/assess_tint.h"
+#include "assess/body_angles.h"
+#include "assess/rula.h"
+#include "daemon/tint.h"
+#include "figure/human.h"
+#include "figure/kin.h"
+#include "figure/model.h"
+#include "figure/state.h"
 
 static struct assess_result
 one_part(enum assess_method m, const char *name, int score, int body)
@@ -151,6 +167,65 @@ test_colours_mean_the_same_urgency_in_each_method(void **unused)
 	assert_string_equal(assess_level_word(ASSESS_OWAS), "AC");
 }
 
+static void
+assert_colour(const struct model *m, const float *rgba, const char *seg, const float want[4])
+{
+	int i = model_find_segment(m, seg);
+	assert_true(i >= 0);
+	for (int k = 0; k < 4; k++)
+		if (rgba[4 * i + k] != want[k])
+			fail_msg("%s channel %d: %g, expected %g", seg, k, rgba[4 * i + k], want[k]);
+}
+
+static void
+test_a_raised_arm_tints_its_segments_and_allocates_nothing(void **unused)
+{
+	(void)unused;
+	char err[256];
+	struct human_def hd = human_default_def(HUMAN_MALE);
+	struct model *m = human_build(&hd, err, sizeof err);
+	assert_non_null(m);
+	struct state *s = state_make(m);
+	assert_non_null(s);
+	s->q[m->jnt_dof0[model_find_joint(m, "shoulder_r")]] = 110 * M_PI / 180;
+	kin_update(m, s);
+	struct assess_config cfg = assess_config_default();
+	struct rula_options o = rula_options_default();
+	struct body_angles a;
+	static struct assess_result r;
+	assert_int_equal(body_angles_measure(m, s, 0, cfg.kneel_height, &a, err, sizeof err), 0);
+	rula_score(&a, &cfg, &o, &r);
+	assert_int_equal(r.side, ASSESS_SIDE_RIGHT);
+	const struct assess_result *side[2] = { NULL, &r }; /* the right arm scored */
+	static struct tint_map map;
+	static float rgba[4 * TINT_MAX_SEG];
+	assert_int_equal(tint_segments(&map, m, 1, side, rgba), 0);
+	assert_colour(m, rgba, "upperarm_r", tint_rgba[ASSESS_YELLOW]);
+	assert_colour(m, rgba, "clavicle_r", tint_rgba[ASSESS_YELLOW]);
+	static const char *const green[] = { "forearm_r", "hand_r", "pelvis", "L3", "T1", "head",
+					     "thigh_l", "shank_r", "foot_l", "toes_r" };
+	for (size_t i = 0; i < sizeof green / sizeof green[0]; i++)
+		assert_colour(m, rgba, green[i], tint_rgba[ASSESS_GREEN]);
+	static const char *const grey[] = { "clavicle_l", "upperarm_l", "forearm_l", "hand_l" };
+	for (size_t i = 0; i < sizeof grey / sizeof grey[0]; i++)
+		assert_colour(m, rgba, grey[i], tint_unscored_rgba);
+	int eye = model_find_segment(m, "eyeball_l");
+	assert_colour(m, rgba, "eyeball_l", &m->seg_rgba[4 * eye]);
+	/* a figure that is not a human's segments: no colours */
+	static struct tint_map other;
+	struct model fake = *m;
+	fake.nseg = 1; /* the pelvis alone: no arms */
+	assert_int_equal(tint_segments(&other, &fake, 1, side, rgba), -1);
+#if COUNT_ALLOCS
+	long before = allocs;
+	for (int i = 0; i < 100; i++)
+		assert_int_equal(tint_segments(&map, m, 1, side, rgba), 0);
+	assert_int_equal(allocs, before);
+#endif
+	state_free(s);
+	model_free(m);
+}
+
 int
 main(void)
 {
@@ -160,6 +235,7 @@ main(void)
 		cmocka_unit_test(test_owas_digits_alone_follow_the_classification),
 		cmocka_unit_test(test_add_ons_unknown_parts_and_bad_indices_have_no_level),
 		cmocka_unit_test(test_colours_mean_the_same_urgency_in_each_method),
+		cmocka_unit_test(test_a_raised_arm_tints_its_segments_and_allocates_nothing),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
