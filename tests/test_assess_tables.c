@@ -744,7 +744,7 @@ test_owas_table(void **state)
 					place_owas(&a, b, ar, l);
 					struct owas_options o = { kg[ld] };
 					owas_score(&a, &cfg, &o, &r);
-					char code[8];
+					char code[48];
 					snprintf(code, sizeof code, "%d%d%d%d", b, ar, l, ld);
 					assert_string_equal(r.code, code);
 					assert_int_equal(r.score, owas_cell(b, ar, l, ld));
