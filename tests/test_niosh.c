@@ -399,6 +399,13 @@ test_composite(void **state)
 	high[1].freq = 4;
 	assert_int_equal(niosh_composite(high, 2, &m, err, sizeof err), 0);
 	assert_near(m.fm_sum[1], .15, 1e-12); /* 9 lifts/min, 2-8 h, V >= 75 */
+	/* mixed heights: once a task from below 75 cm is in, the V < 75 column reads on */
+	high[0].v_origin_cm = 50;
+	assert_int_equal(niosh_composite(high, 2, &m, err, sizeof err), 0);
+	assert_int_equal(m.order[0], 0);
+	assert_near(m.fm_sum[0], .35, 1e-12);
+	assert_near(m.fm_sum[1], 0, 0); /* 9 lifts/min, 2-8 h, V < 75: beyond the column */
+	assert_true(isinf(m.cli));
 	/* one task: the CLI is its STLI */
 	assert_int_equal(niosh_composite(t, 1, &m, err, sizeof err), 0);
 	assert_near(m.cli, m.stli[0], 0);
