@@ -222,3 +222,31 @@ def test_owas_against_peer(postures):
             "seated or kneeling with both knees bent scored 4",
             "one-legged stance bent by the raised leg", "load digit fixed at 1"} <= set(kinds)
     assert exact >= 200
+
+
+def test_tool_refuses_bad_lines_and_keeps_going():
+    text = ('{"id": 1, "angles": {"upper_arm_flexion_r": 50, "shoulder_elevation_r": 14.2}}\n'
+            '{"id": 2, "angles": {"no_such_angle": 1}}\n'
+            'not json\n'
+            '{"id": 4, "options": {"coupling": "sticky"}}\n'
+            '{"id": 5, "angles": {"trunk_flexion": 30}, "options": {"load": 12}}\n')
+    proc = subprocess.run([str(TOOL), "rula", "owas"], input=text, capture_output=True,
+                          text=True, timeout=60)
+    assert proc.returncode == 1
+    out = [json.loads(x) for x in proc.stdout.splitlines()]
+    assert len(out) == 5
+    assert out[1] == {"id": 2, "error": "unknown angle 'no_such_angle'"}
+    assert "not JSON" in out[2]["error"]
+    assert "coupling" in out[3]["error"]
+    assert "line 2" in proc.stderr and "line 4" in proc.stderr
+    ua = out[0]["rula"]["parts"]["upper_arm"]
+    assert (ua["band"], ua["base"], ua["score"]) == ("45-90 deg flexion", 3, 4)
+    assert ua["adjustments"] == [{"value": 1, "reason": "shoulder raised: clavicle elevation 14.2 > 10 deg"}]
+    assert out[4]["owas"]["code"] == "2122" and out[4]["owas"]["score"] == 2
+    # a threshold set on the command line, and one refused
+    proc = subprocess.run([str(TOOL), "--set", "owas_back=35", "owas"], input=text.splitlines()[4],
+                          capture_output=True, text=True, timeout=60)
+    assert json.loads(proc.stdout)["owas"]["code"] == "1122"
+    proc = subprocess.run([str(TOOL), "--set", "owas_back=95"], input="", capture_output=True,
+                          text=True, timeout=60)
+    assert proc.returncode == 2 and "0..90" in proc.stderr
