@@ -48,6 +48,8 @@ struct assess_part {
 	struct assess_adjust adj[ASSESS_MAX_ADJ];
 	int score;              /* base + adjustments, clamped to the method's range */
 	int max;                /* the part's highest possible score (for the tint) */
+	int body;               /* 1: a body part (tinted, may be the worst); 0: an add-on
+				   the user states (muscle use, load, coupling, activity) */
 };
 
 struct assess_lookup {
@@ -68,14 +70,16 @@ struct assess_result {
 	struct assess_part part[ASSESS_MAX_PARTS];
 	int nlookups;
 	struct assess_lookup lookup[ASSESS_MAX_LOOKUPS];
-	int worst;           /* index into part[] of the part that scores highest relative to its max */
+	int worst;           /* index into part[] of the body part that scores highest relative to
+				its range, (score - 1) / (max - 1), the first on ties; OWAS: the
+				part whose code, made neutral, lowers the category most */
 	char code[8];        /* OWAS: the four-digit posture code ("2131"); "" for the others */
 };
 
 /*
  * The thresholds the methods' texts leave open, in degrees (or metres, or a
  * fraction where said), settable with `set assess KEY=VALUE`. Each default
- * and where it comes from is in assess_config_keys (assess_config.c).
+ * and where it comes from is in assess_config_keys (assess.c).
  */
 struct assess_config {
 	double upright;            /* trunk/neck within this of neutral counts as "upright" / 0 */
