@@ -287,6 +287,11 @@ test_shoulder_elevation_is_the_clavicles(void **st)
 	set_deg(f, clav[1], HUMAN_DOF_CLAV_ELEVATE, -8);
 	a = measure(f);
 	assert_near(a.arm[1].shoulder_elevation, -8, EXACT);
+	/* one shoulder brought forward (reaching) is no trunk twist: the thorax has not turned */
+	set_deg(f, clav[0], HUMAN_DOF_CLAV_PROTRACT, 20);
+	set_deg(f, clav[1], HUMAN_DOF_CLAV_PROTRACT, 0);
+	a = measure(f);
+	assert_near(a.trunk_twist, 0, EXACT);
 }
 
 static void
