@@ -410,7 +410,7 @@ static void
 spine_rest(struct fx *f, double p[SPINE_NJNT][3])
 {
 	for (int k = 0; k < SPINE_NJNT; k++) {
-		char name[16];
+		char name[24];
 		snprintf(name, sizeof name, "spine_%d", k);
 		int j = model_find_joint(f->m, name);
 		assert_true(j >= 0);
@@ -434,7 +434,7 @@ test_trunk_flexion_spread_over_the_spine(void **st)
 	assert_int_equal(spine_apply(f->m, f->s, &waist, total, sf), 0);
 	double phi = 0, cy = 0, cz = 0;
 	for (int k = 0; k + 1 < SPINE_NJNT; k++) {
-		char name[16];
+		char name[24];
 		snprintf(name, sizeof name, "spine_%d", k);
 		phi += *dof(f, name, HUMAN_DOF_FLEX);
 		double dy = p[k + 1][1] - p[k][1], dz = p[k + 1][2] - p[k][2];
@@ -454,7 +454,7 @@ test_trunk_flexion_spread_over_the_spine(void **st)
 	double cx = 0;
 	cy = 0;
 	for (int k = 0; k + 1 < SPINE_NJNT; k++) {
-		char name[16];
+		char name[24];
 		snprintf(name, sizeof name, "spine_%d", k);
 		phi += *dof(f, name, HUMAN_DOF_ABD); /* + left: about -z, y turns towards +x */
 		double dx = p[k + 1][0] - p[k][0], dy = p[k + 1][1] - p[k][1];
