@@ -845,6 +845,22 @@ test_not_a_human(void **st)
 	model_free(m);
 }
 
+/* a posture that is not finite: an error naming the first angle it spoils, nothing written */
+static void
+test_non_finite_posture(void **st)
+{
+	struct fx *f = *st;
+	*dof(f, "elbow_r", 0) = NAN;
+	kin_update(f->m, f->s);
+	char err[256] = "";
+	struct body_angles a, keep;
+	memset(&a, 0x5a, sizeof a);
+	keep = a;
+	assert_int_equal(body_angles_measure(f->m, f->s, 0, 0.05, &a, err, sizeof err), -1);
+	assert_non_null(strstr(err, "elbow_flexion_r is not finite"));
+	assert_memory_equal(&a, &keep, sizeof a);
+}
+
 static void
 test_measuring_allocates_nothing(void **st)
 {
@@ -891,6 +907,7 @@ main(void)
 		T(test_niosh_geometry),
 		T(test_names),
 		cmocka_unit_test(test_not_a_human),
+		T(test_non_finite_posture),
 		T(test_measuring_allocates_nothing),
 	};
 #undef T

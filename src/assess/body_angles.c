@@ -484,6 +484,13 @@ body_angles_measure(const struct model *m, const struct state *s, int seated, do
 			a.leg[side].weight_share = a.leg[side].foot_on_floor;
 	}
 	a.seated = !!seated;
+	for (size_t i = 0; i < body_angle_count; i++)
+		if (!isfinite(body_angle_value(&a, i))) {
+			if (err && errlen)
+				snprintf(err, errlen, "body angles: %s is not finite (the posture is not)",
+					 body_angle_names[i].name);
+			return -1;
+		}
 	*dest = a;
 	return 0;
 }
