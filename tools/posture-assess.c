@@ -44,33 +44,6 @@ static const char usage[] =
 	"--set KEY=VALUE  one of the thresholds the methods leave open (`set assess`);\n"
 	"  --set help lists them with their units, ranges and sources\n";
 
-/* the input's angle names: each a double or an int flag of struct body_angles */
-struct field {
-	const char *name;
-	size_t offset;
-	int flag;
-};
-
-#define D(n) { #n, offsetof(struct body_angles, n), 0 }
-#define ARM(n, s, i) { #n "_" s, offsetof(struct body_angles, arm[i].n), 0 }
-#define LEG(n, s, i, f) { #n "_" s, offsetof(struct body_angles, leg[i].n), f }
-#define ARMS(s, i)                                                                              \
-	ARM(upper_arm_flexion, s, i), ARM(upper_arm_abduction, s, i),                           \
-		ARM(upper_arm_rotation, s, i), ARM(shoulder_elevation, s, i),                   \
-		ARM(elbow_flexion, s, i), ARM(wrist_flexion, s, i), ARM(wrist_deviation, s, i), \
-		ARM(wrist_twist, s, i), ARM(wrist_twist_fraction, s, i),                        \
-		ARM(hand_across_midline, s, i), ARM(hand_out_to_side, s, i),                    \
-		ARM(elbow_above_shoulder, s, i), ARM(hand_above_shoulder, s, i)
-#define LEGS(s, i)                                                                               \
-	LEG(hip_flexion, s, i, 0), LEG(knee_flexion, s, i, 0), LEG(weight_share, s, i, 0),       \
-		LEG(foot_on_floor, s, i, 1), LEG(kneeling, s, i, 1)
-
-static const struct field fields[] = {
-	D(trunk_flexion), D(trunk_side_bend), D(trunk_twist), D(hip_trunk_angle), D(neck_flexion),
-	D(neck_side_bend), D(neck_twist), { "seated", offsetof(struct body_angles, seated), 1 },
-	ARMS("l", BODY_LEFT), ARMS("r", BODY_RIGHT), LEGS("l", BODY_LEFT), LEGS("r", BODY_RIGHT),
-};
-
 static struct body_angles
 standing(void)
 {
@@ -99,15 +72,13 @@ read_angles(json_t *obj, struct body_angles *a, char *err, size_t errlen)
 	const char *key;
 	json_t *v;
 	json_object_foreach(obj, key, v) {
-		const struct field *f = NULL;
-		for (size_t i = 0; i < sizeof fields / sizeof fields[0] && !f; i++)
-			if (!strcmp(fields[i].name, key))
-				f = &fields[i];
-		if (!f) {
+		int i = body_angle_find(key);
+		if (i < 0) {
 			snprintf(err, errlen, "unknown angle '%s'", key);
 			return -1;
 		}
-		if (!json_is_number(v) && !(f->flag && json_is_boolean(v))) {
+		const struct body_angle_name *f = &body_angle_names[i];
+		if (!json_is_number(v) && !(f->integer && json_is_boolean(v))) {
 			snprintf(err, errlen, "angle '%s' is not a number", key);
 			return -1;
 		}
@@ -116,7 +87,7 @@ read_angles(json_t *obj, struct body_angles *a, char *err, size_t errlen)
 			snprintf(err, errlen, "angle '%s' is not finite", key);
 			return -1;
 		}
-		if (f->flag)
+		if (f->integer)
 			*(int *)((char *)a + f->offset) = x != 0;
 		else
 			*(double *)((char *)a + f->offset) = x;
