@@ -744,7 +744,7 @@ test_owas_table(void **state)
 					place_owas(&a, b, ar, l);
 					struct owas_options o = { kg[ld] };
 					owas_score(&a, &cfg, &o, &r);
-					char code[8];
+					char code[48];
 					snprintf(code, sizeof code, "%d%d%d%d", b, ar, l, ld);
 					assert_string_equal(r.code, code);
 					assert_int_equal(r.score, owas_cell(b, ar, l, ld));
@@ -864,6 +864,49 @@ test_config(void **state)
 	assert_int_equal(rula_part_at(a, "trunk", c2), 2);
 }
 
+
+/* the reasons' own formatter prints what snprintf prints, for random values and thresholds */
+static void
+test_reasons_match_printf(void **state)
+{
+	(void)state;
+	uint64_t seed = 7;
+	char want[ASSESS_REASON], err[160];
+	for (int i = 0; i < 3000; i++) {
+		seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+		double u1 = (double)(seed >> 11) / 9007199254740992.0;
+		seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+		double u2 = (double)(seed >> 11) / 9007199254740992.0;
+		struct assess_config cfg = assess_config_default();
+		/* thresholds of up to 2 decimals, as a person sets them */
+		double th = floor(u2 * 9000) / 100, mid = floor(u2 * 30) / 100;
+		assert_int_equal(assess_config_set(&cfg, "arm_abducted", th, err, sizeof err), 0);
+		assert_int_equal(assess_config_set(&cfg, "out_to_side", mid, err, sizeof err), 0);
+		struct body_angles a = neutral();
+		a.arm[BODY_RIGHT].upper_arm_abduction = th + 0.01 + u1 * 1000;
+		a.arm[BODY_RIGHT].hand_out_to_side = mid + 0.001 + u1 * 3;
+		struct rula_options o = rula_right();
+		struct assess_result r;
+		rula_score(&a, &cfg, &o, &r);
+		snprintf(want, sizeof want, "upper arm abducted: %.1f > %g deg",
+			 a.arm[BODY_RIGHT].upper_arm_abduction, th);
+		assert_string_equal(part(&r, "upper_arm")->adj[0].reason, want);
+		snprintf(want, sizeof want, "working out to the side: hand %.2f m outside the shoulder > %g m",
+			 a.arm[BODY_RIGHT].hand_out_to_side, mid);
+		assert_string_equal(part(&r, "lower_arm")->adj[0].reason, want);
+		/* negative values and %d */
+		a = neutral();
+		a.arm[BODY_RIGHT].wrist_deviation = -(10.01 + u1 * 50);
+		a.leg[BODY_LEFT].foot_on_floor = 0;
+		a.legs_on_floor = 1;
+		rula_score(&a, &cfg, &o, &r);
+		snprintf(want, sizeof want, "bent from the midline: ulnar deviation %.1f > 10 deg",
+			 -a.arm[BODY_RIGHT].wrist_deviation);
+		assert_string_equal(part(&r, "wrist")->adj[0].reason, want);
+		assert_string_equal(part(&r, "legs")->adj[0].reason, "1 foot bears weight");
+	}
+}
+
 int
 main(void)
 {
@@ -875,6 +918,7 @@ main(void)
 		cmocka_unit_test(test_reba_table_b),   cmocka_unit_test(test_reba_table_c),
 		cmocka_unit_test(test_reba_edges),     cmocka_unit_test(test_owas_table),
 		cmocka_unit_test(test_owas_edges),     cmocka_unit_test(test_config),
+		cmocka_unit_test(test_reasons_match_printf),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -17,7 +17,6 @@
  * shock, the coupling, the activity score.
  */
 #include <math.h>
-#include <stdio.h>
 
 #include "assess/assess_internal.h"
 #include "assess/reba.h"

@@ -17,7 +17,6 @@
  * (static or repeated), the load and how it is applied, arm support, shock.
  */
 #include <math.h>
-#include <stdio.h>
 
 #include "assess/assess_internal.h"
 #include "assess/rula.h"
