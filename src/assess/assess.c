@@ -154,6 +154,99 @@ assess_band(struct assess_part *p, int base, const char *band)
 	p->base = base;
 }
 
+/*
+ * The reasons' formatting, without vsnprintf (a frame formats a dozen of
+ * them; the printf family cost more than the scoring): %s, %d, %.1f, %.2f
+ * and %g, where %g prints a threshold as set (at most 4 decimals, trailing
+ * zeros dropped). Writes at most end - o - 1 characters and a NUL.
+ */
+static char *
+put_char(char *o, char *end, char c)
+{
+	if (o < end - 1)
+		*o++ = c;
+	return o;
+}
+
+static char *
+put_str(char *o, char *end, const char *s)
+{
+	while (*s && o < end - 1)
+		*o++ = *s++;
+	return o;
+}
+
+static char *
+put_uint(char *o, char *end, unsigned long long v)
+{
+	char d[24];
+	int n = 0;
+	do
+		d[n++] = (char)('0' + v % 10);
+	while ((v /= 10) && n < 24);
+	while (n)
+		o = put_char(o, end, d[--n]);
+	return o;
+}
+
+/* x with decimals places (round half to even, as printf on exact halves); trim drops trailing zeros */
+static char *
+put_fixed(char *o, char *end, double x, int decimals, int trim)
+{
+	if (isnan(x))
+		return put_str(o, end, "nan");
+	if (x < 0) {
+		o = put_char(o, end, '-');
+		x = -x;
+	}
+	if (x >= 1e15)
+		return put_str(o, end, "inf");
+	double scale = 1;
+	for (int i = 0; i < decimals; i++)
+		scale *= 10;
+	unsigned long long v = (unsigned long long)nearbyint(x * scale), unit = (unsigned long long)scale;
+	o = put_uint(o, end, v / unit);
+	unsigned long long frac = v % unit;
+	if (!decimals || (trim && !frac))
+		return o;
+	o = put_char(o, end, '.');
+	for (unsigned long long d = unit / 10; d; d /= 10) {
+		o = put_char(o, end, (char)('0' + frac / d % 10));
+		if (trim && !(frac % d))
+			break;
+	}
+	return o;
+}
+
+static void
+format_reason(char *o, size_t size, const char *fmt, va_list ap)
+{
+	char *end = o + size;
+	for (const char *f = fmt; *f; f++) {
+		if (*f != '%') {
+			o = put_char(o, end, *f);
+		} else if (!strncmp(f, "%s", 2)) {
+			o = put_str(o, end, va_arg(ap, const char *));
+			f += 1;
+		} else if (!strncmp(f, "%d", 2)) {
+			int v = va_arg(ap, int);
+			if (v < 0)
+				o = put_char(o, end, '-');
+			o = put_uint(o, end, v < 0 ? -(unsigned long long)v : (unsigned long long)v);
+			f += 1;
+		} else if (!strncmp(f, "%.1f", 4) || !strncmp(f, "%.2f", 4)) {
+			o = put_fixed(o, end, va_arg(ap, double), f[2] - '0', 0);
+			f += 3;
+		} else if (!strncmp(f, "%g", 2)) {
+			o = put_fixed(o, end, va_arg(ap, double), 4, 1);
+			f += 1;
+		} else {
+			o = put_char(o, end, '%'); /* the scorers use no other conversion */
+		}
+	}
+	*o = 0;
+}
+
 void
 assess_adjust(struct assess_part *p, int value, const char *fmt, ...)
 {
@@ -163,7 +256,7 @@ assess_adjust(struct assess_part *p, int value, const char *fmt, ...)
 	a->value = value;
 	va_list ap;
 	va_start(ap, fmt);
-	vsnprintf(a->reason, sizeof a->reason, fmt, ap);
+	format_reason(a->reason, sizeof a->reason, fmt, ap);
 	va_end(ap);
 }
 

@@ -23,7 +23,11 @@ struct assess_part *assess_part(struct assess_result *r, const char *name, const
 /* the band the part fell in: its score and the method's words for it */
 void assess_band(struct assess_part *p, int base, const char *band);
 
-/* an adjustment of value with its reason (printf format: the measured value and the threshold) */
+/*
+ * An adjustment of value with its reason: the measured value and the threshold, in a
+ * printf-like format of %s, %d, %.1f, %.2f and %g only (assess.c formats it without the
+ * printf family; %g prints a threshold with at most 4 decimals)
+ */
 void assess_adjust(struct assess_part *p, int value, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 

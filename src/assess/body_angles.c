@@ -7,9 +7,11 @@
  * (pyergonomics' body planes: up from the pelvis to the neck, the coronal
  * plane through the hip line, the trunk's bend against world vertical in
  * the vertical planes so made; ignc-research's trunk against a gravity
- * vector; elbow and knee as the angle between the two segments) and the
+ * vector; the elbow as 180 deg less the angle at its joint centre) and the
  * human's own joint conventions (figure/human.h) elsewhere, so that a
- * single joint moved from the built posture reads back its value.
+ * single joint moved from the built posture reads back its value. Where a
+ * method's plane projection is singular (the arm abducted to the side), a
+ * decomposition without that singularity is used (upper_arm below).
  *
  * The right side is measured as the mirror image of the left: relative
  * rotations are conjugated by the reflection x -> -x, which turns the right
@@ -484,6 +486,13 @@ body_angles_measure(const struct model *m, const struct state *s, int seated, do
 			a.leg[side].weight_share = a.leg[side].foot_on_floor;
 	}
 	a.seated = !!seated;
+	for (size_t i = 0; i < body_angle_count; i++)
+		if (!isfinite(body_angle_value(&a, i))) {
+			if (err && errlen)
+				snprintf(err, errlen, "body angles: %s is not finite (the posture is not)",
+					 body_angle_names[i].name);
+			return -1;
+		}
 	*dest = a;
 	return 0;
 }

@@ -57,8 +57,11 @@ niosh_measure(const struct model *m, const struct state *s, struct niosh_geometr
 		fwd[0] = -(l[2] - r[2]), fwd[2] = l[0] - r[0];
 		n = sqrt(mathx_dot(fwd, fwd));
 	}
-	if (n < 1e-12)
-		return fail(err, errlen, "pair of feet apart");
+	if (n < 1e-12) {
+		if (err && errlen)
+			snprintf(err, errlen, "niosh: the feet give no mid-sagittal line");
+		return -1;
+	}
 	for (int i = 0; i < 3; i += 2)
 		g.forward[i] = fwd[i] / n;
 

@@ -23,7 +23,6 @@
  * one posture and never produced.
  */
 #include <math.h>
-#include <stdio.h>
 
 #include "assess/assess_internal.h"
 #include "assess/owas.h"
@@ -172,7 +171,9 @@ owas_score(const struct body_angles *a, const struct assess_config *cfg,
 	c[1] = arms(r, a);
 	c[2] = legs(r, a, cfg);
 	c[3] = load(r, o);
-	snprintf(r->code, sizeof r->code, "%d%d%d%d", c[0], c[1], c[2], c[3]);
+	for (int i = 0; i < 4; i++)
+		r->code[i] = (char)('0' + c[i]);
+	r->code[4] = 0;
 	r->score = assess_lookup(r, "AC", 4, names, c, owas_category(c[0], c[1], c[2], c[3]));
 	r->action_level = r->score;
 	r->action = action_words[r->score];

@@ -17,7 +17,6 @@
  * shock, the coupling, the activity score.
  */
 #include <math.h>
-#include <stdio.h>
 
 #include "assess/assess_internal.h"
 #include "assess/reba.h"
@@ -187,7 +186,8 @@ upper_arm(struct assess_result *r, const struct body_arm *arm, const struct asse
 {
 	const char *band;
 	struct assess_part *p = assess_part(r, "upper_arm", ua_name[side], arm->upper_arm_flexion, 1, 6);
-	assess_band(p, assess_upper_arm_band(arm->upper_arm_flexion, &band), band);
+	int base = assess_upper_arm_band(arm->upper_arm_flexion, &band);
+	assess_band(p, base, band);
 	double rot = fabs(arm->upper_arm_rotation);
 	if (arm->upper_arm_abduction > cfg->arm_abducted)
 		assess_adjust(p, 1, "arm abducted: %.1f > %g deg", arm->upper_arm_abduction,
@@ -207,7 +207,8 @@ lower_arm(struct assess_result *r, const struct body_arm *arm, int side)
 {
 	const char *band;
 	struct assess_part *p = assess_part(r, "lower_arm", elbow_name[side], arm->elbow_flexion, 1, 2);
-	assess_band(p, assess_lower_arm_band(arm->elbow_flexion, &band), band);
+	int base = assess_lower_arm_band(arm->elbow_flexion, &band);
+	assess_band(p, base, band);
 	return assess_close(p, 1, 2);
 }
 

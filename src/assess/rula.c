@@ -17,7 +17,6 @@
  * (static or repeated), the load and how it is applied, arm support, shock.
  */
 #include <math.h>
-#include <stdio.h>
 
 #include "assess/assess_internal.h"
 #include "assess/rula.h"
@@ -92,7 +91,8 @@ upper_arm(struct assess_result *r, const struct body_arm *arm, const struct asse
 {
 	const char *band;
 	struct assess_part *p = assess_part(r, "upper_arm", ua_name[side], arm->upper_arm_flexion, 1, 6);
-	assess_band(p, assess_upper_arm_band(arm->upper_arm_flexion, &band), band);
+	int base = assess_upper_arm_band(arm->upper_arm_flexion, &band);
+	assess_band(p, base, band);
 	if (arm->shoulder_elevation > cfg->shoulder_raised)
 		assess_adjust(p, 1, "shoulder raised: clavicle elevation %.1f > %g deg",
 			      arm->shoulder_elevation, cfg->shoulder_raised);
@@ -110,7 +110,8 @@ lower_arm(struct assess_result *r, const struct body_arm *arm, const struct asse
 {
 	const char *band;
 	struct assess_part *p = assess_part(r, "lower_arm", elbow_name[side], arm->elbow_flexion, 1, 3);
-	assess_band(p, assess_lower_arm_band(arm->elbow_flexion, &band), band);
+	int base = assess_lower_arm_band(arm->elbow_flexion, &band);
+	assess_band(p, base, band);
 	/* one +1 for either: "working across the midline or out to the side" */
 	if (arm->hand_across_midline > cfg->across_midline)
 		assess_adjust(p, 1, "working across the midline: hand %.2f m past it > %g m",
