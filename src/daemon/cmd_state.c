@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "daemon/assess_live.h"
 #include "daemon/cmd_ctx.h"
 #include "draw/frame_writer.h"
 #include "draw/kms_pick.h"
@@ -229,6 +230,9 @@ cmd_status(struct cmd_ctx *c)
 	json_object_set_new(c->result, "figures", json_integer(env_count(&c->d->env)));
 	json_object_set_new(c->result, "undo", json_integer(c->d->undo.n));
 	json_object_set_new(c->result, "redo", json_integer(c->d->redo.n));
+	/* the figures' assessments computed so far (a cached one counts none) */
+	json_object_set_new(c->result, "assessments",
+			    json_integer((json_int_t)assess_live_computed(c->d)));
 	return 0;
 }
 

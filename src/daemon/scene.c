@@ -259,14 +259,18 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 			snprintf(scores, sizeof scores, "   RULA %d, REBA %d", a->res[ASSESS_RULA].score,
 				 a->res[ASSESS_REBA].score);
 	}
+	/* a line longer than the status's room loses its end: the timings, then the frame */
+	int n = 0;
 	if (caret < 0 && sc->replaying) /* the live timings are not the replay's: pictures stay alike */
-		snprintf(status, sizeof status, "%s%s%s   frame %llu   replay", vw->name, who, scores,
-			 (unsigned long long)d->stats.frame);
+		n = snprintf(status, sizeof status, "%s%s%s   frame %llu   replay", vw->name, who,
+			     scores, (unsigned long long)d->stats.frame);
 	else if (caret < 0)
-		snprintf(status, sizeof status,
-			 "%s%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms", vw->name,
-			 who, scores, (unsigned long long)d->stats.frame, d->stats.fps, d->stats.ik_us,
-			 d->stats.draw_us / 1000);
+		n = snprintf(status, sizeof status,
+			     "%s%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
+			     vw->name, who, scores, (unsigned long long)d->stats.frame, d->stats.fps,
+			     d->stats.ik_us, d->stats.draw_us / 1000);
+	if (n < 0)
+		status[0] = '\0';
 	if (kiosk)
 		snprintf(d->status_line, sizeof d->status_line, "%s", status);
 	view_add_status(sc->dl, status, manipulating && ia->message[0] ? ia->message : d->message,
