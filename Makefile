@@ -160,7 +160,7 @@ SYSUSERSDIR ?= /usr/lib/sysusers.d
 MODLOADDIR ?= /usr/lib/modules-load.d
 # the scripts' interpreter: the system's Python, whose path holds PYDIR
 INSTALL_PYTHON ?= /usr/bin/python3
-INSTALL_PROGS := postured posture-figure posture-input
+INSTALL_PROGS := postured posture-figure posture-input posture-assess
 INSTALL_SCRIPTS := posturectl posture-replay
 INSTALL_PY := __init__.py client.py replay.py
 

@@ -15,6 +15,7 @@ enum {
 	G_MANIPULATE,
 	G_BEHAVIOURS,
 	G_CONSTRAINTS,
+	G_ERGONOMICS,
 	G_VIEWS,
 	G_FILES,
 	G_INPUT,
@@ -28,7 +29,7 @@ enum {
  * typing a command's word ("joint") keeps exactly the commands that have it.
  */
 static const char *const group_title[G_COUNT] = {
-	"Figures", "Posture", "Manipulate", "Behaviours", "Constraints",
+	"Figures", "Posture", "Manipulate", "Behaviours", "Constraints", "Ergonomics",
 	"Views", "Files & history", "Input & kiosk", "Status & help", "Other",
 };
 
@@ -96,8 +97,15 @@ static const struct group_key group_table[] = {
 	{ "list", "constraints", G_CONSTRAINTS },
 	{ "settle", "", G_CONSTRAINTS },
 
+	{ "assess", NULL, G_ERGONOMICS },
+	{ "get", "angles", G_ERGONOMICS },
+	{ "set", "assess", G_ERGONOMICS },
+	{ "get", "assess", G_ERGONOMICS },
+	{ "export", "assessment", G_ERGONOMICS },
+
 	{ "add", "view", G_VIEWS },
 	{ "set", "camera", G_VIEWS },
+	{ "set", "view", G_VIEWS },
 	{ "render", "view", G_VIEWS },
 	{ "delete", "view", G_VIEWS },
 	{ "list", "views", G_VIEWS },
