@@ -22,6 +22,12 @@
  *   shear_ap = load_force . a (+ the upper vertebra pushed forward);
  *   shear_lat = load_force . l.
  * E and what the model leaves out are in lowback.c and the result's flags.
+ *
+ * From the statics (assess/statics.h, rooted at the pelvis, so spine_0's
+ * distal part is everything above L5/S1): load_force = -force[spine_0],
+ * load_moment = -moment[spine_0] (the statics gives what the pelvis applies
+ * to the upper body); disc_normal and anterior the world +y and +z of
+ * spine_0's distal segment, the L5 slice, whose frame the disc follows.
  */
 #ifndef POSTURE_LOWBACK_H
 #define POSTURE_LOWBACK_H

@@ -54,10 +54,12 @@ enum strength_kind {
 };
 
 /*
- * The anatomical axes, each signed: flexion + (extension -); abduction +
- * (adduction -; the torso's lateral bend, the wrist's radial deviation);
- * internal rotation + (external -; the forearm's pronation, the torso's
- * twist to the left).
+ * The anatomical axes, each signed as assess/statics.h's anat[] (a moment
+ * the muscles must supply in that sense): flexion + (extension -; the
+ * ankle's dorsiflexion); abduction + (adduction -; the ankle's inversion,
+ * the wrist's radial deviation, the torso's bending to the left); internal
+ * rotation + (external -; the wrist's pronation, the torso's turning to
+ * the left).
  */
 enum strength_axis {
 	STRENGTH_FLEXION,
