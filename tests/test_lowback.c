@@ -92,6 +92,9 @@ test_lab_report(void **state)
 	assert_int_equal(lowback_compute(&in, &r, err, sizeof err), 0);
 	assert_near(lowback_moment_arm(), 0.05, 0);
 	assert_near(r.muscle_force, 5006, 0.5);
+	/* what the sagittal model leaves out, named for the reply */
+	assert_int_equal(lowback_nunmodelled, 3);
+	assert_string_equal(lowback_unmodelled[0], "abdominal_pressure");
 }
 
 static void

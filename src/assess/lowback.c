@@ -35,6 +35,10 @@
 /* E, m: Chaffin et al. ch. 6 via research human-factors §5.2 (unconfirmed) */
 static const double extensor_arm_m = 0.05;
 
+const char *const lowback_unmodelled[] = { "abdominal_pressure", "disc_angle_regression",
+					    "lateral_and_axial_moments" };
+const int lowback_nunmodelled = sizeof lowback_unmodelled / sizeof lowback_unmodelled[0];
+
 double
 lowback_moment_arm(void)
 {

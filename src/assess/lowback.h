@@ -90,6 +90,15 @@ int lowback_compute(const struct lowback_input *in, struct lowback_result *dest,
 int lowback_compute_arm(const struct lowback_input *in, double e_m, struct lowback_result *dest,
 			char *err, size_t errlen);
 
+/*
+ * What the model always leaves out, for the reply's "unmodelled" list:
+ * "abdominal_pressure", "disc_angle_regression", "lateral_and_axial_moments"
+ * (lowback.c says why); "flexors" joins them when the result has
+ * LOWBACK_FLEXOR_UNMODELLED.
+ */
+extern const char *const lowback_unmodelled[];
+extern const int lowback_nunmodelled;
+
 /* the model's extensor moment arm, m (lowback.c says where it comes from) */
 double lowback_moment_arm(void);
 
