@@ -2,8 +2,9 @@
  * test_strength.c - percent capable: Phi against the standard normal's
  * printed quantiles and a Simpson integration of its density (both apart
  * from erfc); 100 Phi((S - |M|) / sigma) by hand; the tint's bands and
- * NIOSH's per-sex criteria at their edges; the shipped table's null answer
- * (no published curve transcribed, strength.c); and the curve machinery on
+ * NIOSH's per-sex criteria at their edges; the shipped knee curves against
+ * the source's own numbers typed here (mean -> 50 %, mean - SD -> Phi(1)),
+ * null outside their window and at every other joint; and the machinery on
  * a made-up table whose numbers are the test's own, not a source's: the
  * resisting direction picked by the moment's sign, the sex, linear
  * interpolation between rows, nothing outside them, the least over joints.
@@ -86,25 +87,80 @@ test_bands(void **state)
 	assert_int_equal(strength_niosh_band(NAN, STRENGTH_MALE), -1);
 }
 
+/*
+ * The knee's published rows, typed here from the source apart from
+ * strength.c: Arthroscopy, Sports Medicine, and Rehabilitation 2024, doi
+ * 10.1016/j.asmr.2023.100861, abstract's Results (80 deg of knee flexion;
+ * N m, mean and SD): women extensors 143.5 +- 34.4, flexors 66.8 +- 13.8;
+ * men extensors 199.8 +- 47.3, flexors 89.8 +- 21.0.
+ */
+static const struct {
+	enum strength_sex sex;
+	int dir; /* -1 extensors, +1 flexors */
+	double mean, sd;
+} knee_source[] = {
+	{ STRENGTH_FEMALE, -1, 143.5, 34.4 },
+	{ STRENGTH_FEMALE, +1, 66.8, 13.8 },
+	{ STRENGTH_MALE, -1, 199.8, 47.3 },
+	{ STRENGTH_MALE, +1, 89.8, 21.0 },
+};
+/* Phi(1) and Phi(-2) as printed in normal tables */
+#define PHI_1 0.8413447460685429
+#define PHI_M2 0.022750131948179195
+
 static void
-test_published_is_null(void **state)
+test_published_knee(void **state)
 {
 	(void)state;
-	struct strength_input in = { .sex = STRENGTH_FEMALE };
-	in.moment[STRENGTH_ELBOW_R][STRENGTH_FLEXION] = 30;
-	in.moment[STRENGTH_L5S1][STRENGTH_FLEXION] = -150;
-	struct strength_result r;
 	char err[128];
-	assert_int_equal(strength_capable(&in, &r, err, sizeof err), 0);
-	for (int j = 0; j < STRENGTH_NJOINTS; j++)
-		for (int a = 0; a < STRENGTH_NAXES; a++) {
-			assert_true(isnan(r.percent[j][a]));
-			assert_true(isnan(r.mean[j][a]));
+	for (size_t i = 0; i < sizeof knee_source / sizeof knee_source[0]; i++) {
+		double mean = knee_source[i].mean, sd = knee_source[i].sd;
+		double dir = knee_source[i].dir;
+		struct strength_input in = { .sex = knee_source[i].sex };
+		struct strength_result r;
+		/* both knees at the source's angle: the left needs the mean, the right the mean - SD */
+		in.angle[STRENGTH_KNEE_L][STRENGTH_FLEXION] = 80;
+		in.angle[STRENGTH_KNEE_R][STRENGTH_FLEXION] = 80;
+		in.moment[STRENGTH_KNEE_L][STRENGTH_FLEXION] = dir * mean;
+		in.moment[STRENGTH_KNEE_R][STRENGTH_FLEXION] = dir * (mean - sd);
+		/* loads elsewhere find no curve */
+		in.moment[STRENGTH_ELBOW_R][STRENGTH_FLEXION] = 30;
+		in.moment[STRENGTH_L5S1][STRENGTH_FLEXION] = -150;
+		in.moment[STRENGTH_KNEE_L][STRENGTH_ABDUCTION] = 20;
+		assert_int_equal(strength_capable(&in, &r, err, sizeof err), 0);
+		assert_near(r.mean[STRENGTH_KNEE_L][STRENGTH_FLEXION], mean, 1e-12);
+		assert_near(r.sd[STRENGTH_KNEE_L][STRENGTH_FLEXION], sd, 1e-12);
+		assert_near(r.percent[STRENGTH_KNEE_L][STRENGTH_FLEXION], 50, 1e-9);
+		assert_near(r.percent[STRENGTH_KNEE_R][STRENGTH_FLEXION], 100 * PHI_1, 1e-9);
+		assert_int_equal(r.modelled, 2);
+		assert_near(r.capable, 50, 1e-9);
+		assert_int_equal(r.weakest_joint, STRENGTH_KNEE_L);
+		for (int j = 0; j < STRENGTH_NJOINTS; j++)
+			for (int a = 0; a < STRENGTH_NAXES; a++)
+				if (a != STRENGTH_FLEXION || strength_joint_kind((enum strength_joint)j) != STRENGTH_KNEE)
+					assert_true(isnan(r.percent[j][a]));
+		/* the window held around the source's one angle: 70-90 deg, null outside */
+		in.moment[STRENGTH_KNEE_L][STRENGTH_FLEXION] = dir * (mean + 2 * sd);
+		for (double ang = 70; ang <= 90; ang += 5) {
+			in.angle[STRENGTH_KNEE_L][STRENGTH_FLEXION] = ang;
+			assert_int_equal(strength_capable(&in, &r, err, sizeof err), 0);
+			assert_near(r.percent[STRENGTH_KNEE_L][STRENGTH_FLEXION], 100 * PHI_M2, 1e-9);
 		}
-	assert_true(isnan(r.capable));
-	assert_int_equal(r.weakest_joint, -1);
-	assert_int_equal(r.modelled, 0);
-	assert_int_equal(strength_published.count, 0);
+		static const double outside[] = { 0, 30, 69.9, 90.1, 120 };
+		for (size_t k = 0; k < sizeof outside / sizeof outside[0]; k++) {
+			in.angle[STRENGTH_KNEE_L][STRENGTH_FLEXION] = outside[k];
+			assert_int_equal(strength_capable(&in, &r, err, sizeof err), 0);
+			assert_true(isnan(r.percent[STRENGTH_KNEE_L][STRENGTH_FLEXION]));
+		}
+	}
+	/* every shipped curve names its source and has rows in increasing angle */
+	assert_int_equal(strength_published.count, 4);
+	for (size_t i = 0; i < strength_published.count; i++) {
+		const struct strength_curve *c = &strength_published.curves[i];
+		assert_true(c->source && strlen(c->source) > 10);
+		for (int k = 0; k + 1 < c->n; k++)
+			assert_true(c->rows[k][0] < c->rows[k + 1][0]);
+	}
 }
 
 /* a made-up table (the test's numbers, no source): elbow flexors and extensors */
@@ -202,7 +258,7 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_phi),	   cmocka_unit_test(test_percent),
-		cmocka_unit_test(test_bands),	   cmocka_unit_test(test_published_is_null),
+		cmocka_unit_test(test_bands),	   cmocka_unit_test(test_published_knee),
 		cmocka_unit_test(test_curves),	   cmocka_unit_test(test_bad_input),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -2,34 +2,66 @@
  * strength.c - percent capable per joint and axis from a table of
  * published strength curves (strength.h).
  *
- * Which curves ship: none yet. Every joint and axis answers NAN (null),
- * because no population strength model could be transcribed from a source
- * seen in full:
- * - 3DSSPP's strength equations (mean and SD of each joint's maximal
- *   moment as functions of the joint angles, by sex; Chaffin, Andersson &
- *   Martin ch. 6, after Stobbe 1982): the textbook's tables were not
- *   reachable, and the public copy of 3DSSPP's source holds its interface,
- *   not its analysis library;
- * - Harbo, Brincks & Andersen 2012 (Eur J Appl Physiol 112:267-275),
- *   isometric strength of 6 joints by sex, age, height and mass: only the
- *   abstract was reachable, not its regression table;
- * - Anderson, Madigan & Nussbaum 2007 (J Biomech 40:3105) and Frey-Law et
- *   al. 2012 torque-angle surfaces: coefficients not retrieved, and they
- *   give means without a population SD;
- * - NASA-STD-3000 vol. 1 §4.9: its tables give forces at the 5th
- *   percentile, not mean and SD of joint moments.
- * A curve added to `published` below (with its source and a test typing
- * the source's rows) turns its joint, axis and sex on; nothing else
- * changes.
+ * Which curves ship: the knee's flexors and extensors, men and women, at
+ * one sampled angle (below). Every other joint and axis answers NAN
+ * (null): no population strength model with a mean and an SD per sex could
+ * be read in full for it (searched: 3DSSPP's strength equations after
+ * Chaffin, Andersson & Martin ch. 6 and Stobbe 1982, the textbook not
+ * reachable and the public copy of 3DSSPP's source lacking its analysis
+ * library; Harbo, Brincks & Andersen 2012 and Danneskiold-Samsoe et al.
+ * 2009, abstracts only; Hughes et al. 1999's shoulder tables and Hussain &
+ * Frey-Law 2016's ankle angles, abstracts only; Anderson, Madigan &
+ * Nussbaum 2007 and Frey-Law et al. 2012, means without a population SD;
+ * NASA-STD-3000 vol. 1 sec. 4.9, 5th-percentile forces). A curve added to
+ * `published` below (with its source and a test typing the source's rows)
+ * turns its joint, axis and sex on; nothing else changes.
  */
 #include <math.h>
 #include <stdio.h>
 
 #include "assess/strength.h"
 
-static const struct strength_curve published[1] = { { 0 } };
+/*
+ * The knee at 80 deg of flexion (0 = straight): maximal voluntary isometric
+ * net torque, mean and SD by sex, of "Absolute and Normalized Normative
+ * Torque Values of Knee Extensors and Flexors in Healthy Trained Subjects:
+ * Asymmetry Questions the Classical Use of Uninjured Limb as Reference",
+ * Arthroscopy, Sports Medicine, and Rehabilitation, 2024 (doi
+ * 10.1016/j.asmr.2023.100861, PMID 38288034, PMC10823066), Results of the
+ * abstract: 35 men and 39 women aged 18 to 41, trained in sports at risk of
+ * anterior cruciate ligament rupture, each torque the mean of the peaks of
+ * 3 maximal contractions:
+ *   extensors  women 143.5 +- 34.4 N m   men 199.8 +- 47.3 N m
+ *   flexors    women  66.8 +- 13.8 N m   men  89.8 +- 21.0 N m
+ * The source gives one angle, so the angle's effect is not modelled: the
+ * value is held over 70-90 deg of knee flexion, a window of +-10 deg chosen
+ * here (not the source's), and the knee answers null outside it (extension
+ * strength near a straight knee is a fraction of its value at 80 deg).
+ * Trained adults of working age: the percent capable of an untrained
+ * population is likely lower than this says.
+ */
+#define KNEE_LO 70.0
+#define KNEE_HI 90.0
+static const double knee_ext_m[2][3] = { { KNEE_LO, 199.8, 47.3 }, { KNEE_HI, 199.8, 47.3 } };
+static const double knee_ext_f[2][3] = { { KNEE_LO, 143.5, 34.4 }, { KNEE_HI, 143.5, 34.4 } };
+static const double knee_flex_m[2][3] = { { KNEE_LO, 89.8, 21.0 }, { KNEE_HI, 89.8, 21.0 } };
+static const double knee_flex_f[2][3] = { { KNEE_LO, 66.8, 13.8 }, { KNEE_HI, 66.8, 13.8 } };
+#define KNEE_SOURCE \
+	"Arthrosc Sports Med Rehabil 2024, doi 10.1016/j.asmr.2023.100861, abstract; 80 deg held 70-90"
 
-const struct strength_table strength_published = { published, 0 };
+static const struct strength_curve published[] = {
+	{ STRENGTH_KNEE, STRENGTH_FLEXION, -1, STRENGTH_MALE, STRENGTH_FLEXION, 2, knee_ext_m,
+	  KNEE_SOURCE },
+	{ STRENGTH_KNEE, STRENGTH_FLEXION, -1, STRENGTH_FEMALE, STRENGTH_FLEXION, 2, knee_ext_f,
+	  KNEE_SOURCE },
+	{ STRENGTH_KNEE, STRENGTH_FLEXION, +1, STRENGTH_MALE, STRENGTH_FLEXION, 2, knee_flex_m,
+	  KNEE_SOURCE },
+	{ STRENGTH_KNEE, STRENGTH_FLEXION, +1, STRENGTH_FEMALE, STRENGTH_FLEXION, 2, knee_flex_f,
+	  KNEE_SOURCE },
+};
+
+const struct strength_table strength_published = { published,
+						   sizeof published / sizeof published[0] };
 
 static const char *const joint_names[STRENGTH_NJOINTS] = {
 	[STRENGTH_WRIST_L] = "wrist_l",	      [STRENGTH_WRIST_R] = "wrist_r",
