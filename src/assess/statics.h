@@ -97,7 +97,6 @@ struct statics_result {
 	int contacts;        /* supports that touch (feet on the floor, the seat) */
 	int lifts;           /* 1: the loads lift the figure (the supports would have to pull) */
 	int tips;            /* 1: cop outside the support polygon, or lifts: it would fall */
-	int residual_ok;     /* 1: the whole-body equilibrium closes to 1e-9 relative */
 };
 
 /*
