@@ -11,7 +11,8 @@ Pinocchio wants them), must give every dof's torque within 1e-6 N m, and zero on
 flyer: that the supports close the whole body's equilibrium, checked by Pinocchio's own sums.
 
 Cases, each 100 random postures within the joint limits with loads drawn afresh for each:
-gravity only (the human, the female default, a chair), forces and torques at the hands, a
+gravity only (the human, the female default, a chair), forces and torques at the hands (also
+on a short heavy manikin built from measures), a
 weight on one hand, a box held in both hands, seated, and figures re-rooted at a foot and at
 a hand (the URDF then exported with the tree running from there, the free flyer above it).
 """
@@ -150,6 +151,8 @@ CASES = {
     # name: (figure args, extra args, load kind, URDF root)
     "human-gravity": (["--human"], [], None, None),
     "female-gravity": (["--human", "--sex", "female"], [], None, None),
+    "manikin-hand-forces": (["--human", "--sex", "female", "--measure", "stature=1550",
+                             "--measure", "weightkg=85"], [], "hands", None),
     "chair-gravity": (["--figure", FIGURES / "chair.fig"], [], None, None),
     "human-hand-forces": (["--human"], [], "hands", None),
     "human-hand-weight": (["--human"], [], "weight", None),
@@ -202,3 +205,22 @@ def test_joint_torques_match_pinocchio_rnea(case, tmp_path):
                 worst = max(worst, abs(tau[ref.dof_index(joint, k)] - ours))
     assert worst < TOL, f"a dof's torque differs from Pinocchio's RNEA by {worst:.3g}"
     assert worst_base < TOL, f"the supports leave {worst_base:.3g} on the free flyer"
+
+
+@pytest.mark.parametrize("args,says", [
+    (["--load", "hand_r.palm,1,2"], "and then a force FX,FY,FZ (N) and optionally a torque"),
+    (["--load", "hand_r.palm,1,2,3,4"], "and then a force FX,FY,FZ (N) and optionally a torque"),
+    (["--load", "hand_r.nowhere,1,2,3"], "no such site"),
+    (["--load", "hand_r.palm,1,x,3"], "and then a force"),
+    (["--weight", "hand_r.palm,-2"], "above 0 kg"),
+    (["--weight", "hand_r.palm,2,3"], "SEGMENT.SITE and then the mass (kg)"),
+    (["--weight", "hand_r.palm"], "no such site"),
+    (["--seated", "--figure", FIGURES / "chair.fig"], "ischial"),
+])
+def test_loads_refuses_bad_options_saying_why(args, says):
+    """a bad load is an error that says what is wrong, and nothing is printed"""
+    proc = subprocess.run([str(BUILD / "bin" / "posture-figure"), *map(str, args), "loads"],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode != 0
+    assert says in proc.stderr, proc.stderr
+    assert proc.stdout == ""
