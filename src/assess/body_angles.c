@@ -288,46 +288,6 @@ neck(const double r[9], struct body_angles *dest)
 }
 
 /*
- * 1 when a segment's geometry comes within h of the floor: the lowest
- * corner of each geom's bounding box, the test balance.c makes
- */
-static int
-touches_floor(const struct model *m, const struct state *s, int seg, double h)
-{
-	const struct xform *x = &s->seg_xf[seg];
-	for (int g = m->seg_geom0[seg]; g < m->seg_geom0[seg] + m->seg_ngeom[seg]; g++) {
-		const double *sz = &m->geom_size[3 * g];
-		double half[3];
-		switch ((enum geom_kind)m->geom_kind[g]) {
-		case GEOM_BOX:
-		case GEOM_MESH:
-			half[0] = sz[0] / 2, half[1] = sz[1] / 2, half[2] = sz[2] / 2;
-			break;
-		case GEOM_ELLIPSOID:
-			half[0] = sz[0], half[1] = sz[1], half[2] = sz[2];
-			break;
-		case GEOM_CYLINDER:
-		case GEOM_CAPSULE:
-			half[0] = half[2] = sz[0];
-			half[1] = sz[1] / 2 + (m->geom_kind[g] == GEOM_CAPSULE ? sz[0] : 0);
-			break;
-		default:
-			continue;
-		}
-		double gr[9], w[9], c[3];
-		mathx_quat_to_mat(&m->geom_quat[4 * g], gr);
-		mathx_mat3_mul(x->r, gr, w);
-		xform_apply(x, &m->geom_pos[3 * g], c);
-		double low = c[1];
-		for (int k = 0; k < 3; k++)
-			low -= fabs(w[3 + k]) * half[k];
-		if (low < h)
-			return 1;
-	}
-	return 0;
-}
-
-/*
  * The body's horizontal axes: lat along the hip line (right to left hip),
  * fwd = lat x up the way the pelvis faces. A hip line that stands vertical
  * (lying on one side) has no horizontal direction: the pelvis's forward
@@ -470,8 +430,9 @@ body_angles_measure(const struct model *m, const struct state *s, int seated, do
 	for (int side = 0; side < 2; side++) {
 		arm(m, s, &bs, side, &a.arm[side]);
 		leg(s, &bs, side, kneel_height, &a.leg[side]);
-		a.leg[side].foot_on_floor = touches_floor(m, s, bs.foot[side], BALANCE_CONTACT) ||
-					    touches_floor(m, s, bs.toes[side], BALANCE_CONTACT);
+		a.leg[side].foot_on_floor =
+			balance_touches_floor(m, s, bs.foot[side], BALANCE_CONTACT) ||
+			balance_touches_floor(m, s, bs.toes[side], BALANCE_CONTACT);
 		a.legs_on_floor += a.leg[side].foot_on_floor;
 	}
 	/*

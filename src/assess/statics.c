@@ -81,49 +81,6 @@ add_force(double *w, const double x[3], const double f[3])
 	}
 }
 
-/*
- * 1 when a segment's geometry comes within h of the floor (y = 0): the
- * lowest corner of each geom's bounding box, as balance.c and body_angles.c
- * test a foot
- */
-static int
-touches_floor(const struct model *m, const struct state *s, int seg, double h)
-{
-	if (seg < 0)
-		return 0;
-	const struct xform *x = &s->seg_xf[seg];
-	for (int g = m->seg_geom0[seg]; g < m->seg_geom0[seg] + m->seg_ngeom[seg]; g++) {
-		const double *sz = &m->geom_size[3 * g];
-		double half[3];
-		switch ((enum geom_kind)m->geom_kind[g]) {
-		case GEOM_BOX:
-		case GEOM_MESH:
-			half[0] = sz[0] / 2, half[1] = sz[1] / 2, half[2] = sz[2] / 2;
-			break;
-		case GEOM_ELLIPSOID:
-			half[0] = sz[0], half[1] = sz[1], half[2] = sz[2];
-			break;
-		case GEOM_CYLINDER:
-		case GEOM_CAPSULE:
-			half[0] = half[2] = sz[0];
-			half[1] = sz[1] / 2 + (m->geom_kind[g] == GEOM_CAPSULE ? sz[0] : 0);
-			break;
-		default:
-			continue;
-		}
-		double gr[9], w[9], c[3];
-		mathx_quat_to_mat(&m->geom_quat[4 * g], gr);
-		mathx_mat3_mul(x->r, gr, w);
-		xform_apply(x, &m->geom_pos[3 * g], c);
-		double low = c[1];
-		for (int k = 0; k < 3; k++)
-			low -= fabs(w[3 + k]) * half[k];
-		if (low < h)
-			return 1;
-	}
-	return 0;
-}
-
 static void
 support_add(struct supports *sp, int kind, int site, const struct model *m)
 {
@@ -189,9 +146,10 @@ supports_find(const struct model *m, const struct state *s, int seated, struct s
 	if (have_feet) {
 		int touch[2];
 		for (int k = 0; k < 2; k++)
-			touch[k] = touches_floor(m, s, m->site_seg[feet[k]], BALANCE_CONTACT) ||
-				   touches_floor(m, s, model_find_segment(m, foot_seg[k][1]),
-						 BALANCE_CONTACT);
+			touch[k] =
+				balance_touches_floor(m, s, m->site_seg[feet[k]], BALANCE_CONTACT) ||
+				balance_touches_floor(m, s, model_find_segment(m, foot_seg[k][1]),
+						      BALANCE_CONTACT);
 		int any = touch[0] || touch[1];
 		for (int k = 0; k < 2; k++)
 			if (touch[k] || (!any && !seated)) {

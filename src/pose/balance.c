@@ -141,6 +141,44 @@ foot_ref(const struct model *m, const struct state *s, int balance_site, const c
 }
 
 int
+balance_touches_floor(const struct model *m, const struct state *s, int seg, double h)
+{
+	if (seg < 0)
+		return 0;
+	const struct xform *x = &s->seg_xf[seg];
+	for (int g = m->seg_geom0[seg]; g < m->seg_geom0[seg] + m->seg_ngeom[seg]; g++) {
+		const double *sz = &m->geom_size[3 * g];
+		double half[3];
+		switch ((enum geom_kind)m->geom_kind[g]) {
+		case GEOM_BOX:
+		case GEOM_MESH:
+			half[0] = sz[0] / 2, half[1] = sz[1] / 2, half[2] = sz[2] / 2;
+			break;
+		case GEOM_ELLIPSOID:
+			half[0] = sz[0], half[1] = sz[1], half[2] = sz[2];
+			break;
+		case GEOM_CYLINDER:
+		case GEOM_CAPSULE:
+			half[0] = half[2] = sz[0];
+			half[1] = sz[1] / 2 + (m->geom_kind[g] == GEOM_CAPSULE ? sz[0] : 0);
+			break;
+		default:
+			continue;
+		}
+		double gr[9], w[9], c[3];
+		mathx_quat_to_mat(&m->geom_quat[4 * g], gr);
+		mathx_mat3_mul(x->r, gr, w);
+		xform_apply(x, &m->geom_pos[3 * g], c);
+		double low = c[1];
+		for (int k = 0; k < 3; k++)
+			low -= fabs(w[3 + k]) * half[k];
+		if (low < h)
+			return 1;
+	}
+	return 0;
+}
+
+int
 balance_measure(const struct model *m, const struct state *s, double contact_height,
 		struct balance *dest)
 {

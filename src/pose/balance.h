@@ -44,6 +44,13 @@ int balance_measure(const struct model *m, const struct state *s, double contact
  */
 int balance_measure_feet(const struct model *m, const struct state *s, double contact_height,
 			 unsigned tiptoe, struct balance *dest);
+/*
+ * 1 when some geom of segment seg (its bounding box, as the support polygon
+ * takes it) comes within contact_height of the floor; 0 for seg < 0
+ */
+int balance_touches_floor(const struct model *m, const struct state *s, int seg,
+			  double contact_height);
+
 /* the parameters (x, z) of any floor point for the feet as measured in b (Figure 5.2) */
 void balance_params_of(const struct balance *b, const double p[2], double *x, double *z);
 
