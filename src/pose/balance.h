@@ -22,6 +22,8 @@ struct balance {
 	double poly[BALANCE_POLY_MAX][2];   /* support polygon, counter-clockwise seen from above */
 	double ref_l[2], ref_r[2];          /* the balance line's ends: left and right foot */
 	double forward[2];                  /* unit, across the balance line, the way the feet face */
+	double com[3];                      /* the centre of mass balanced: the figure's, with the
+					     * weights it carries (point_mass.h) */
 	double point[2];                    /* the balance point: the centre of mass on the floor */
 	double x;                           /* along the line: 0 at the left foot, 1 at the right */
 	double z;                           /* 0 on the line, 1 at the front edge, -1 at the back */
@@ -44,6 +46,13 @@ int balance_measure(const struct model *m, const struct state *s, double contact
  */
 int balance_measure_feet(const struct model *m, const struct state *s, double contact_height,
 			 unsigned tiptoe, struct balance *dest);
+/*
+ * The same, balancing the centre of mass com rather than the figure's own
+ * (s->com): the figure's with the weights it carries (point_mass_com).
+ */
+int balance_measure_com(const struct model *m, const struct state *s, double contact_height,
+			unsigned tiptoe, const double com[3], struct balance *dest);
+
 /* the parameters (x, z) of any floor point for the feet as measured in b (Figure 5.2) */
 void balance_params_of(const struct balance *b, const double p[2], double *x, double *z);
 
