@@ -166,18 +166,23 @@ static void
 test_only_weights_become_point_masses(void **unused)
 {
 	(void)unused;
-	struct ext_load l[3] = {
+	struct ext_load l[4] = {
 		{ 3, { 0.1, 0, 0 }, { 0, -BOX_KG * LOAD_GRAVITY, 0 }, { 0, 0, 0 }, BOX_KG },
 		{ 4, { 0, 0.2, 0 }, { 50, 0, 0 }, { 0, 0, 0 }, 0 },
 		{ 5, { 0, 0, 0.3 }, { 0, -9.80665, 0 }, { 0, 0, 0 }, 1 },
+		/* a second weight on segment 3: one mass of 20 kg at their centre */
+		{ 3, { 0.1, 0.4, 0 }, { 0, -5 * LOAD_GRAVITY, 0 }, { 0, 0, 0 }, 5 },
 	};
 	struct point_mass pm[2];
-	assert_int_equal(point_mass_of_loads(l, 3, pm, 2), 2);
+	assert_int_equal(point_mass_of_loads(l, 4, pm, 2), 2);
 	assert_int_equal(pm[0].seg, 3);
+	assert_near(pm[0].mass, 20, 0);
+	assert_near(pm[0].local[0], 0.1, 1e-15);
+	assert_near(pm[0].local[1], 5 * 0.4 / 20, 1e-15);
 	assert_int_equal(pm[1].seg, 5);
 	assert_near(pm[1].local[2], 0.3, 0);
 	assert_near(pm[1].mass, 1, 0);
-	assert_int_equal(point_mass_of_loads(l, 3, pm, 1), -1);
+	assert_int_equal(point_mass_of_loads(l, 4, pm, 1), -1);
 }
 
 /* the right hand out in front at chest height, with or without the box in it */

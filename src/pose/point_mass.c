@@ -26,6 +26,17 @@ point_mass_of_loads(const struct ext_load *loads, int n, struct point_mass *dest
 	for (int i = 0; i < n; i++) {
 		if (!(loads[i].mass > 0))
 			continue;
+		int j = 0;
+		while (j < k && dest[j].seg != loads[i].seg)
+			j++;
+		if (j < k) { /* another on the same segment: one mass at their centre */
+			double sum = dest[j].mass + loads[i].mass;
+			for (int r = 0; r < 3; r++)
+				dest[j].local[r] = (dest[j].mass * dest[j].local[r] +
+						    loads[i].mass * loads[i].local[r]) / sum;
+			dest[j].mass = sum;
+			continue;
+		}
 		if (k >= max)
 			return -1;
 		dest[k].seg = loads[i].seg;

@@ -17,7 +17,9 @@
 #include "figure/state.h"
 #include "pose/load.h"
 
-#define POINT_MASS_MAX 16 /* weights on one figure: both hands, a belt, a backpack, ... */
+/* point masses on one figure: weights on one segment are one point mass (point_mass_of_loads),
+ * so a figure's every own load on a segment of its own and both hands fit */
+#define POINT_MASS_MAX 72
 
 struct point_mass {
 	int seg;         /* the segment carrying it */
@@ -31,8 +33,10 @@ int point_mass_check(const struct model *m, const struct point_mass *pm, int n);
 
 /*
  * The weights among loads (mass > 0) as point masses, into dest (room for
- * max); forces without mass are left out. Returns how many, or -1 when there
- * are more than max.
+ * max); forces without mass are left out. The weights on one segment become
+ * one point mass, their sum at their centre (exact: they move together), in
+ * the order their segments first come. Returns how many, or -1 when more
+ * than max segments carry weights.
  */
 int point_mass_of_loads(const struct ext_load *loads, int n, struct point_mass *dest, int max);
 
