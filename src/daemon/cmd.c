@@ -116,6 +116,8 @@ names_figure(const struct env *e, const char *word, int fig)
 	}
 	if (slot < 0 && (slot = env_find_constraint(e, w)) >= 0)
 		slot = e->con[slot].fig;
+	if (slot < 0 && (slot = env_find_load(e, w)) >= 0)
+		slot = e->load[slot].fig;
 	return slot == fig;
 }
 
