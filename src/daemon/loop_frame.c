@@ -18,6 +18,7 @@
 #include "daemon/tape_dev.h"
 #include "pose/attach.h"
 #include "pose/behave.h"
+#include "pose/load_balance.h"
 
 uint64_t
 loop_real_now(void)
@@ -169,6 +170,7 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 			break;
 		if (f->behave) /* hands and feet holding on to objects go where the objects are */
 			attach_before_solve(e, i);
+		load_balance_update(e, i); /* balance holds the weights it feels now too */
 		uint64_t t0 = loop_real_now();
 		struct ik_result r = f->behave ? behave_frame(f->behave, f->model, f->state, f->ik, &opt,
 							      clock)

@@ -13,6 +13,7 @@
 #include "daemon/tint.h"
 #include "draw/sink.h"
 #include "draw/tiles.h"
+#include "pose/load_balance.h"
 #include "interact/menu_draw.h"
 
 void
@@ -310,8 +311,11 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 		int dragged = manipulating && ia->mode == INTERACT_DRAG && ia->fig == i;
 		if (!vw->icons && !dragged)
 			continue;
-		if (f->is_human && vw->icons)
-			view_add_balance(sc->dl, f->model, f->state);
+		if (f->is_human && vw->icons) {
+			double com[3]; /* with the weights it carries */
+			load_balance_com(e, i, com);
+			view_add_balance(sc->dl, f->model, f->state, com);
+		}
 		env_sync_solver(e, i);
 		view_add_goals(sc->dl, f->ik, f->model, f->state);
 	}

@@ -339,9 +339,12 @@ void view_add_goals(struct drawlist *dl, const struct ik *ik, const struct model
  * floor), the balance line between the feet's balance sites, the centre of
  * mass at its height with a plumb line, and the balance point (its
  * projection to the floor), green inside the support polygon and red
- * outside. Returns 0, or -1 when the figure has no feet.
+ * outside. com: the centre of mass balanced, the figure's with the weights
+ * it carries (load_balance_com); NULL: its own. Returns 0, or -1 when the
+ * figure has no feet.
  */
-int view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s);
+int view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s,
+		     const double com[3]);
 
 /*
  * The status / edit line at the bottom of the picture and the message line

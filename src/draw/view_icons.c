@@ -275,9 +275,9 @@ view_add_goals(struct drawlist *dl, const struct ik *ik, const struct model *m,
 			xform_mul(&s->site_xf[d->goal_site], &d->goal_xf, &g);
 		else
 			g = d->goal_xf;
-		if (d->com_effector) {
+		if (d->com_effector) { /* with the weights the figure carries */
 			xform_identity(&e);
-			memcpy(e.p, s->com, sizeof e.p);
+			ik_com(ik, s, e.p);
 		} else {
 			xform_mul(&s->site_xf[d->effector_site], &d->effector_offset, &e);
 		}
@@ -343,13 +343,15 @@ view_add_goals(struct drawlist *dl, const struct ik *ik, const struct model *m,
 /* ---- balance ------------------------------------------------------------- */
 
 int
-view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s)
+view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s,
+		 const double com_held[3])
 {
 	static const uint8_t c_poly[4] = { 60, 120, 200, 255 }, c_line[4] = { 30, 60, 160, 255 };
 	uint8_t tc[4];
 	struct balance bal; /* the support polygon and balance line, as balance.c measures them */
-	if (balance_measure(m, s, BALANCE_CONTACT, &bal) < 0)
+	if (balance_measure_com(m, s, BALANCE_CONTACT, 0, com_held ? com_held : s->com, &bal) < 0)
 		return -1;
+	const double *com = bal.com;
 	int nh = bal.npoly;
 	double (*hull)[2] = bal.poly;
 	const double y = 0.002; /* just above the floor */
@@ -378,21 +380,21 @@ view_add_balance(struct drawlist *dl, const struct model *m, const struct state 
 
 	/* the centre of mass: a plumb line, a ring at its height and the balance point */
 	const uint8_t *cb = bal.margin > 0 ? C_GREEN : C_RED;
-	double bp[3] = { s->com[0], y, s->com[2] }, up[3] = { 0, 1, 0 }, ux[3] = { 1, 0, 0 };
+	double bp[3] = { com[0], y, com[2] }, up[3] = { 0, 1, 0 }, ux[3] = { 1, 0, 0 };
 	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, 1.5f, 1);
 	int dashes = 24;
 	for (int i = 0; i < dashes; i += 2) {
-		double a[3] = { bp[0], y + s->com[1] * i / dashes, bp[2] };
-		double b[3] = { bp[0], y + s->com[1] * (i + 1) / dashes, bp[2] };
+		double a[3] = { bp[0], y + com[1] * i / dashes, bp[2] };
+		double b[3] = { bp[0], y + com[1] * (i + 1) / dashes, bp[2] };
 		view_line(dl, a, b, with_alpha(C_BLACK, 150, tc));
 	}
 	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, THICK_WIDTH, 1);
-	view_circle(dl, s->com, up, ux, 0.045, 32, C_BLACK);
+	view_circle(dl, com, up, ux, 0.045, 32, C_BLACK);
 	double e0[3], e1[3];
 	for (int k = 0; k < 3; k += 2) {
 		double d[3] = { k == 0, 0, k == 2 };
-		v_madd(s->com, -0.06, d, e0);
-		v_madd(s->com, 0.06, d, e1);
+		v_madd(com, -0.06, d, e0);
+		v_madd(com, 0.06, d, e1);
 		view_line(dl, e0, e1, C_BLACK);
 	}
 	view_circle(dl, bp, up, ux, 0.035, 32, cb);

@@ -107,6 +107,8 @@ behave_set_masses(struct behave *b, const struct model *m, const struct state *s
 			b->elevation += after[1] - before[1];
 			for (int i = 0; i < 3; i++)
 				b->com_fixed[i] += after[i] - before[i];
+		} else { /* restored: measured again with its weights, telling no alert */
+			behave_measure(b, m, s);
 		}
 	}
 	b->masses_adopt = 0;

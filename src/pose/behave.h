@@ -157,7 +157,8 @@ int behave_restore_constraints(struct behave *b, const struct model *m, struct i
  * moves the hips back. What is held where the figure stands (a held
  * elevation, the fixed centre of mass) moves with the jump a change of
  * weights makes, so the body does not rise or slide for it; the first
- * masses after behave_unpack are taken as those the state was packed with.
+ * masses after behave_unpack are taken as those the state was packed with
+ * (and balance is measured again with them, as behave_measure).
  * The rooting and squat tests read the body's own height (they tell a
  * posture). Returns 0, or -1 for masses the figure cannot carry (nothing
  * changes). s needs kin_com.

@@ -47,15 +47,6 @@ point_mass_of_loads(const struct ext_load *loads, int n, struct point_mass *dest
 	return k;
 }
 
-double
-point_mass_total(const struct state *s, const struct point_mass *pm, int n)
-{
-	double total = s->subtree_mass[s->seg_order[0]];
-	for (int i = 0; i < n; i++)
-		total += pm[i].mass;
-	return total;
-}
-
 void
 point_mass_com(const struct state *s, const struct point_mass *pm, int n, double dest[3])
 {

@@ -40,9 +40,6 @@ int point_mass_check(const struct model *m, const struct point_mass *pm, int n);
  */
 int point_mass_of_loads(const struct ext_load *loads, int n, struct point_mass *dest, int max);
 
-/* the figure's mass with the masses (kg); needs kin_com */
-double point_mass_total(const struct state *s, const struct point_mass *pm, int n);
-
 /*
  * The centre of mass of the figure with the masses (the formula above);
  * needs kin_com. With n == 0 it is s->com exactly, so a figure without
