@@ -278,6 +278,36 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 			caret);
 }
 
+/* a size for a label: whole units from 100 up, else three significant digits */
+static void
+size_text(char *dest, size_t len, double x, const char *unit)
+{
+	snprintf(dest, len, x >= 100 ? "%.0f %s" : "%.3g %s", x, unit);
+}
+
+/* the loads on figure fig as arrows at their sites, each labelled with its size */
+static void
+add_loads(struct drawlist *dl, const struct env *e, int fig)
+{
+	const struct state *s = e->fig[fig].state;
+	for (int k = 0; k < ENV_MAX_LOADS; k++) {
+		const struct env_load *l = &e->load[k];
+		if (!l->gen || l->fig != fig)
+			continue;
+		char label[64], a[28], b[28];
+		double fn = sqrt(mathx_dot(l->force, l->force)), tn = sqrt(mathx_dot(l->torque, l->torque));
+		if (l->mass > 0) {
+			size_text(label, sizeof label, l->mass, "kg");
+		} else {
+			size_text(a, sizeof a, fn, "N");
+			size_text(b, sizeof b, tn, "N m");
+			snprintf(label, sizeof label, "%s%s%s", fn > 0 ? a : "", fn > 0 && tn > 0 ? ", " : "",
+				 tn > 0 ? b : "");
+		}
+		view_add_load(dl, s->site_xf[l->site].p, l->force, l->torque, label);
+	}
+}
+
 int
 scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
 	   size_t errlen)
@@ -308,6 +338,8 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 			view_add_figure_rgba(sc->dl, f->model, f->state, sc->mesh_base[i], tinted);
 		else
 			view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
+		if (!vw->loads_hidden) /* what was put on the body, where it acts */
+			add_loads(sc->dl, e, i);
 		int dragged = manipulating && ia->mode == INTERACT_DRAG && ia->fig == i;
 		if (!vw->icons && !dragged)
 			continue;

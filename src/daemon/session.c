@@ -220,6 +220,8 @@ session_write_with(const struct env *e, const struct assess_config *cfg, FILE *f
 		fprintf(f, " fovy=%.17g", v->fovy_deg);
 		if (v->tint != ENV_TINT_OFF) /* written only when on: untinted views read as before */
 			fprintf(f, " tint=%s", env_tint_str(v->tint));
+		if (v->loads_hidden) /* likewise: only when the loads' arrows are off */
+			fprintf(f, " loads=off");
 		fprintf(f, "\n");
 	}
 	if (e->nlayout) {
@@ -703,8 +705,9 @@ read_attach(struct reader *r, struct env *e)
 }
 
 /*
- * "view NAME width= height= icons= eye= target= [fovy=] [tint=]": fovy
- * (degrees) and tint (an assessment's colours, off when absent) came later
+ * "view NAME width= height= icons= eye= target= [fovy=] [tint=] [loads=off]":
+ * fovy (degrees), tint (an assessment's colours, off when absent) and loads
+ * (the loads' arrows, on when absent) came later
  */
 static int
 read_view(struct reader *r, struct env *e)
@@ -712,10 +715,13 @@ read_view(struct reader *r, struct env *e)
 	struct words *w = &r->w;
 	unsigned long wd, ht, icons;
 	struct env_view v = { .used = 1, .fovy_deg = ENV_VIEW_FOVY_DEG };
-	const char *fovy = arg(w, 2, "fovy"), *tint = arg(w, 2, "tint");
+	const char *fovy = arg(w, 2, "fovy"), *tint = arg(w, 2, "tint"), *loads = arg(w, 2, "loads");
 	if (tint && (v.tint = env_tint_find(tint)) < 0)
 		return fail(r, "view %s: tint=rula|reba|owas|off", w->w[1]);
-	if (w->n != 7 + (fovy != NULL) + (tint != NULL) || !words_is_name(w->w[1]) ||
+	if (loads && strcmp(loads, "on") && strcmp(loads, "off"))
+		return fail(r, "view %s: loads=on|off", w->w[1]);
+	v.loads_hidden = loads && !strcmp(loads, "off");
+	if (w->n != 7 + (fovy != NULL) + (tint != NULL) + (loads != NULL) || !words_is_name(w->w[1]) ||
 	    env_find_view(e, w->w[1]) >= 0 ||
 	    read_uint(arg(w, 2, "width"), 16384, &wd) < 0 || wd < 16 ||
 	    read_uint(arg(w, 2, "height"), 16384, &ht) < 0 || ht < 16 ||
@@ -725,7 +731,7 @@ read_view(struct reader *r, struct env *e)
 	    (fovy && (words_number(fovy, UNIT_NONE, &v.fovy_deg) < 0 ||
 		      v.fovy_deg < ENV_VIEW_FOVY_MIN || v.fovy_deg > ENV_VIEW_FOVY_MAX)))
 		return fail(r, "expected: view NAME width=W height=H icons=0|1 eye=X,Y,Z target=X,Y,Z "
-			       "[fovy=DEG] [tint=rula|reba|owas|off]");
+			       "[fovy=DEG] [tint=rula|reba|owas|off] [loads=on|off]");
 	snprintf(v.name, sizeof v.name, "%s", w->w[1]);
 	v.width = (int)wd;
 	v.height = (int)ht;

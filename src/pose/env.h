@@ -159,6 +159,7 @@ struct env_view {
 	double fovy_deg; /* vertical field of view, degrees, kept as given so it reads back exactly */
 	int icons; /* 1: the manipulation icons, balance and goals */
 	int tint;  /* enum env_tint: the humans' parts coloured by an assessment's part scores */
+	int loads_hidden; /* 1: the loads' arrows not drawn (set view VIEW loads=off); 0 drawn */
 };
 
 struct env {
