@@ -1,7 +1,8 @@
 /*
  * posture-figure - inspect a figure: its dofs and limits, the global frames
- * of its sites for given postures, its centre of mass; export it as URDF,
- * glTF or in the figure language.
+ * of its sites for given postures, its centre of mass, the forces and
+ * moments its joints carry under loads; export it as URDF, glTF or in the
+ * figure language.
  */
 #include <errno.h>
 #include <stdio.h>
@@ -18,7 +19,9 @@
 #include "export/gltf.h"
 #include "export/seg_mesh.h"
 #include "export/urdf.h"
+#include "assess/statics.h"
 #include "pose/anthropometry.h"
+#include "pose/load.h"
 
 static const char usage[] =
 	"usage: posture-figure [FIGURE OPTIONS] [POSTURE OPTIONS] COMMAND\n"
@@ -37,6 +40,14 @@ static const char usage[] =
 	"  --random SEED         one random posture within the joint limits\n"
 	"  --root SEG.SITE       re-root through this site (in the initial posture);\n"
 	"                        postures then keep it fixed in space\n"
+	"loads (the loads command):\n"
+	"  --load SEG.SITE,FX,FY,FZ[,TX,TY,TZ]\n"
+	"                        a force (N) and torque (N m), world frame (y up), at a\n"
+	"                        site; repeatable\n"
+	"  --weight SEG.SITE,KG  a weight hanging at a site (its force KG x 9.80665 N\n"
+	"                        down); repeatable\n"
+	"  --seated              the figure sits: the seat bears it under the ischial\n"
+	"                        tuberosities, with the feet on the floor\n"
 	"output:\n"
 	"  --out FILE.urdf       urdf: write FILE.urdf and each segment's mesh beside it\n"
 	"                        (FILE_SEGMENT.stl) instead of the URDF alone to stdout\n"
@@ -60,7 +71,19 @@ static const char usage[] =
 	"            frames, 0.5 s apart (without --q-file, the posture alone)\n"
 	"  write     the figure in the figure language\n"
 	"  measures  the human measured as ANSUR II measured people: NAME VALUE lines\n"
-	"            (mm; weightkg in kg)\n";
+	"            (mm; weightkg in kg)\n"
+	"  loads     per posture, one JSON line: the static equilibrium under gravity\n"
+	"            and the --load and --weight loads: the supports' forces, every\n"
+	"            joint's force and moment (proximal onto distal, world frame, N\n"
+	"            and N m), its dofs' generalised torques and, for the human's\n"
+	"            wrists, elbows, shoulders, L5/S1, hips, knees and ankles, the\n"
+	"            moment about the anatomical axes\n";
+
+/* a --load or --weight as given, read once the figure is built */
+struct load_arg {
+	const char *text;
+	int weight;
+};
 
 struct options {
 	int human;
@@ -68,6 +91,8 @@ struct options {
 	const char *figure, *qfile, *root, *command, *out;
 	long seed;
 	int have_seed;
+	int seated, nload;
+	struct load_arg load[STATICS_MAX_LOADS];
 };
 
 static int
@@ -122,7 +147,8 @@ parse_options(int argc, char **argv, struct options *o)
 	unsigned given = 0;
 	for (int i = 1; i < argc; i++) {
 		const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-		int takes = strcmp(a, "--human") && strncmp(a, "--help", 6) && a[0] == '-' && a[1];
+		int takes = strcmp(a, "--human") && strcmp(a, "--seated") && strncmp(a, "--help", 6) &&
+			    a[0] == '-' && a[1];
 		if (takes && !v) {
 			fprintf(stderr, "posture-figure: %s needs a value\n", a);
 			return -1;
@@ -189,6 +215,16 @@ parse_options(int argc, char **argv, struct options *o)
 		} else if (!strcmp(a, "--out")) {
 			o->out = v;
 			i++;
+		} else if (!strcmp(a, "--load") || !strcmp(a, "--weight")) {
+			if (o->nload == STATICS_MAX_LOADS) {
+				fprintf(stderr, "posture-figure: more than %d loads\n", STATICS_MAX_LOADS);
+				return -1;
+			}
+			o->load[o->nload].text = v;
+			o->load[o->nload++].weight = a[2] == 'w';
+			i++;
+		} else if (!strcmp(a, "--seated")) {
+			o->seated = 1;
 		} else if (a[0] == '-') {
 			fprintf(stderr, "posture-figure: unknown option %s\n%s", a, usage);
 			return -1;
@@ -373,10 +409,153 @@ print_measures(const struct model *m)
 	return 0;
 }
 
+/* the loads the loads command solves for, read from the options against the figure */
+struct loads_in {
+	struct ext_load load[STATICS_MAX_LOADS];
+	int n, seated;
+};
+
+/*
+ * "SEG.SITE,X,Y,..." -> the load's segment and point and the numbers after
+ * the site (n of them, n in [min, max]); 0, or -1 said on stderr
+ */
+static int
+parse_site_numbers(const struct model *m, const char *opt, const char *text, struct ext_load *l,
+		   double *v, int min, int max, int *n)
+{
+	const char *comma = strchr(text, ',');
+	char name[2 * MODEL_NAME_MAX];
+	int site = -1;
+	if (comma && (size_t)(comma - text) < sizeof name) {
+		memcpy(name, text, (size_t)(comma - text));
+		name[comma - text] = 0;
+		site = model_find_site(m, name);
+	}
+	if (site < 0) {
+		fprintf(stderr, "posture-figure: %s '%s': no such site (give SEGMENT.SITE,...)\n", opt,
+			text);
+		return -1;
+	}
+	l->seg = m->site_seg[site];
+	memcpy(l->local, m->site_loc[site].p, sizeof l->local);
+	*n = 0;
+	for (const char *p = comma; p && *p == ','; (*n)++) {
+		char *end;
+		errno = 0;
+		if (*n == max || (v[*n] = strtod(p + 1, &end), end == p + 1) || errno ||
+		    !isfinite(v[*n]) || (*end && *end != ',')) {
+			*n = -1;
+			break;
+		}
+		p = end;
+	}
+	if (*n < min) {
+		fprintf(stderr, "posture-figure: %s '%s': the site and then %d%s numbers\n", opt, text,
+			min, max > min ? " or more" : "");
+		return -1;
+	}
+	return 0;
+}
+
+/* the --load and --weight options as loads on m; 0, or -1 said on stderr */
+static int
+loads_read(const struct model *m, const struct options *o, struct loads_in *dest)
+{
+	memset(dest, 0, sizeof *dest);
+	dest->seated = o->seated;
+	for (int i = 0; i < o->nload; i++) {
+		struct ext_load *l = &dest->load[i];
+		double v[6] = { 0 };
+		int n;
+		if (o->load[i].weight) {
+			if (parse_site_numbers(m, "--weight", o->load[i].text, l, v, 1, 1, &n) < 0)
+				return -1;
+			if (!(v[0] > 0)) {
+				fprintf(stderr, "posture-figure: --weight '%s': the mass is above 0 kg\n",
+					o->load[i].text);
+				return -1;
+			}
+			l->mass = v[0];
+			l->force[1] = -v[0] * LOAD_GRAVITY;
+		} else {
+			if (parse_site_numbers(m, "--load", o->load[i].text, l, v, 3, 6, &n) < 0)
+				return -1;
+			if (n != 3 && n != 6) {
+				fprintf(stderr, "posture-figure: --load '%s': a force (3 numbers) and "
+						"optionally a torque (3 more)\n", o->load[i].text);
+				return -1;
+			}
+			memcpy(l->force, v, sizeof l->force);
+			memcpy(l->torque, v + 3, sizeof l->torque);
+		}
+		dest->n++;
+	}
+	return 0;
+}
+
+static void
+json_vec(const double v[3])
+{
+	printf("[%.17g,%.17g,%.17g]", v[0], v[1], v[2]);
+}
+
+/* the statics of one posture as a JSON line; 0, or 1 said on stderr */
+static int
+print_loads(const struct model *m, const struct state *s, const struct loads_in *li, int posture)
+{
+	static const char *const kind[] = { [STATICS_FOOT] = "foot", [STATICS_SEAT] = "seat",
+					    [STATICS_ROOT] = "root" };
+	static struct statics_result r; /* 40 kB: not on the stack */
+	char err[512], name[2 * MODEL_NAME_MAX];
+	if (statics_solve(m, s, li->load, li->n, li->seated, &r, err, sizeof err) < 0) {
+		fprintf(stderr, "posture-figure: %s\n", err);
+		return 1;
+	}
+	printf("{\"posture\":%d,\"weight\":%.17g,\"load_mass\":%.17g,\"seated\":%d,"
+	       "\"contacts\":%d,\"lifts\":%d,\"tips\":%d,\"margin\":%.17g,\"cop\":",
+	       posture, r.weight_n, r.load_mass, r.seated, r.contacts, r.lifts, r.tips, r.margin);
+	json_vec(r.cop);
+	printf(",\"supports\":[");
+	for (int k = 0; k < r.nsupport; k++) {
+		const struct statics_support *u = &r.support[k];
+		printf("%s{\"site\":\"%s\",\"kind\":\"%s\",\"segment\":\"%s\",\"share\":%.17g,"
+		       "\"point\":", k ? "," : "", model_site_fullname(m, u->site, name, sizeof name),
+		       kind[u->kind], m->seg_name[u->seg], u->share);
+		json_vec(u->point);
+		printf(",\"force\":");
+		json_vec(u->force);
+		printf(",\"moment\":");
+		json_vec(u->moment);
+		printf("}");
+	}
+	printf("],\"joints\":{");
+	for (int j = 0; j < r.njoint; j++) {
+		printf("%s\"%s\":{\"distal\":\"%s\",\"point\":", j ? "," : "", m->jnt_name[j],
+		       m->seg_name[r.distal_seg[j]]);
+		json_vec(r.point[j]);
+		printf(",\"force\":");
+		json_vec(r.force[j]);
+		printf(",\"moment\":");
+		json_vec(r.moment[j]);
+		printf(",\"dofs\":[");
+		for (int d = m->jnt_dof0[j]; d < m->jnt_dof0[j] + m->jnt_ndof[j]; d++)
+			printf("%s%.17g", d > m->jnt_dof0[j] ? "," : "", r.dof_torque[d]);
+		printf("],\"anatomical\":");
+		const char *const *axis = statics_axis_names(m, j);
+		if (!axis)
+			printf("null");
+		for (int k = 0; axis && k < 3; k++)
+			printf("%s\"%s\":%.17g%s", k ? "," : "{", axis[k], r.anat[j][k], k == 2 ? "}" : "");
+		printf("}");
+	}
+	printf("}}\n");
+	return 0;
+}
+
 /* the per-posture commands; returns 0, 1 on a failure (said), or -1 for an unknown command */
 static int
 per_posture(const struct model *m, const struct state *s, const char *cmd, int posture,
-	    const char *out)
+	    const char *out, const struct loads_in *li)
 {
 	if (!strcmp(cmd, "sites"))
 		print_sites(m, s, posture);
@@ -397,6 +576,8 @@ per_posture(const struct model *m, const struct state *s, const char *cmd, int p
 		print_dofs(m);
 	else if (!strcmp(cmd, "joints"))
 		print_joints(m, s);
+	else if (!strcmp(cmd, "loads"))
+		return print_loads(m, s, li, posture);
 	else
 		return -1;
 	return 0;
@@ -597,7 +778,8 @@ main(int argc, char **argv)
 	}
 	kin_update(m, s);
 	/* the root is chosen in the initial posture and stays fixed in space */
-	if (set_root(m, s, o.root) < 0) {
+	static struct loads_in li;
+	if (set_root(m, s, o.root) < 0 || loads_read(m, &o, &li) < 0) {
 		rc = 1;
 		goto out;
 	}
@@ -617,7 +799,7 @@ main(int argc, char **argv)
 		goto out;
 	}
 	if (!o.qfile) {
-		int got = per_posture(m, s, o.command, 0, o.out);
+		int got = per_posture(m, s, o.command, 0, o.out, &li);
 		if (got < 0)
 			fprintf(stderr, "posture-figure: unknown command '%s'\n%s", o.command, usage);
 		rc = got < 0 ? 2 : got;
@@ -631,7 +813,7 @@ main(int argc, char **argv)
 	int lineno = 0, n = 0, got;
 	while ((got = read_posture(f, m, s->q, &lineno)) > 0) {
 		kin_update(m, s);
-		int done = per_posture(m, s, o.command, n++, o.out);
+		int done = per_posture(m, s, o.command, n++, o.out, &li);
 		if (done) {
 			if (done < 0)
 				fprintf(stderr, "posture-figure: unknown command '%s'\n", o.command);

@@ -270,6 +270,7 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	free(before);
 	out->ok = rc == 0;
 	out->mutated = rc == 0 && (e->flags & CMD_MUTATES);
+	d->mutations += out->mutated;
 	out->close = c.quit;
 	out->json = dump_reply(rc == 0, w.tag, c.result, c.code ? c.code : "internal", c.msg);
 }

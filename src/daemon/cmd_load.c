@@ -181,7 +181,8 @@ carried_json(struct cmd_ctx *c, int fig, json_t *list)
 		json_object_set_new(o, "share", json_real(from[k].share));
 		json_object_set_new(o, "force", cmd_vec(set[k].force, 3));
 		json_object_set_new(o, "torque", cmd_vec(set[k].torque, 3));
-		json_object_set_new(o, "mass", set[k].mass > 0 ? json_real(set[k].mass) : json_null());
+		int weight = from[k].load < 0 || e->load[from[k].load].mass > 0; /* its share may be 0 */
+		json_object_set_new(o, "mass", weight ? json_real(set[k].mass) : json_null());
 		json_object_set_new(o, "position", cmd_vec(at, 3));
 		json_array_append_new(list, o);
 	}

@@ -107,6 +107,7 @@ loop_command(struct loop *L, int client, const char *line, size_t len, struct cm
 	}
 	events_posture_changes(&L->events);
 	events_assessment(&L->events, &L->d);
+	events_loads(&L->events, &L->d);
 }
 
 int
@@ -204,6 +205,7 @@ loop_settle_frame(struct daemon *d, int *changed)
 	int rc = frame(L, &clock, L->period_us, changed);
 	events_posture_changes(&L->events);
 	events_assessment(&L->events, &L->d);
+	events_loads(&L->events, &L->d);
 	return rc;
 }
 
@@ -233,6 +235,7 @@ loop_live_frame(struct loop *L)
 	L->scene.dirty |= waiting || changed;
 	events_posture_changes(&L->events);
 	events_assessment(&L->events, &L->d);
+	events_loads(&L->events, &L->d);
 	uint64_t drawn = L->scene.drawn_us;
 	if (scene_publish(&L->scene, &L->d, &L->events, now)) {
 		/* rendering's share of the frame, smoothed: the solver gets the rest (§4.7.2) */

@@ -9,6 +9,8 @@
 #include <string.h>
 
 #include "daemon/assess_live.h"
+#include "daemon/loads_json.h"
+#include "daemon/loads_live.h"
 #include "daemon/family.h"
 #include "daemon/tint.h"
 #include "draw/sink.h"
@@ -251,7 +253,9 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 							  : -1;
 	/* the kiosk's figure, and where its size comes from, after the view's name */
 	int fig = daemon_kiosk_figure(d);
-	char scores[40] = ""; /* a human's RULA and REBA grand scores now (the font is ASCII's) */
+	/* a human's RULA and REBA grand scores now (the font is ASCII's), its low back's
+	 * compression and the weakest joint's percent capable */
+	char scores[40] = "", loads[48] = "";
 	if (fig >= 0) {
 		memcpy(who, "   ", 3);
 		family_describe(&d->env, fig, who + 3, sizeof who - 3);
@@ -259,16 +263,18 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 		if (a)
 			snprintf(scores, sizeof scores, "   RULA %d, REBA %d", a->res[ASSESS_RULA].score,
 				 a->res[ASSESS_REBA].score);
+		if (d->env.fig[fig].is_human)
+			loads_json_status(loads_live_of(d, fig), loads, sizeof loads);
 	}
 	/* a line longer than the status's room loses its end: the timings, then the frame */
 	int n = 0;
 	if (caret < 0 && sc->replaying) /* the live timings are not the replay's: pictures stay alike */
-		n = snprintf(status, sizeof status, "%s%s%s   frame %llu   replay", vw->name, who,
-			     scores, (unsigned long long)d->stats.frame);
+		n = snprintf(status, sizeof status, "%s%s%s%s   frame %llu   replay", vw->name, who,
+			     scores, loads, (unsigned long long)d->stats.frame);
 	else if (caret < 0)
 		n = snprintf(status, sizeof status,
-			     "%s%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
-			     vw->name, who, scores, (unsigned long long)d->stats.frame, d->stats.fps,
+			     "%s%s%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
+			     vw->name, who, scores, loads, (unsigned long long)d->stats.frame, d->stats.fps,
 			     d->stats.ik_us, d->stats.draw_us / 1000);
 	if (n < 0)
 		status[0] = '\0';

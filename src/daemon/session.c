@@ -651,11 +651,13 @@ read_load(struct reader *r, struct env *e)
 	l.site = l.fig >= 0 && site ? model_find_site(e->fig[l.fig].model, site) : -1;
 	int weight = mass && !force && !torque && w->n == 7;
 	int pushed = !mass && force && torque && w->n == 8;
-	if (w->n < 7 || !words_is_name(w->w[1]) || l.fig < 0 || l.site < 0 ||
+	if (w->n < 7 || !words_is_name(w->w[1]) || l.fig < 0 ||
 	    read_uint(arg(w, 2, "slot"), ENV_MAX_LOADS - 1, &slot) < 0 ||
 	    read_uint(arg(w, 2, "gen"), 0xffffffffu, &gen) < 0 || gen == 0 || !(weight || pushed))
 		return fail(r, "expected: load NAME slot=N gen=G figure=FIG site=SEG.SITE mass=KG | "
 			       "force=FX,FY,FZ torque=TX,TY,TZ, for a figure defined above");
+	if (l.site < 0)
+		return fail(r, "load %s: %s has no site %s", w->w[1], figname, site ? site : "(none)");
 	if (weight && (words_number(mass, UNIT_NONE, &l.mass) < 0 || !(l.mass > 0)))
 		return fail(r, "load %s: mass= a number of kg above 0", w->w[1]);
 	if (weight)
