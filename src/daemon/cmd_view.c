@@ -136,7 +136,7 @@ cmd_set_camera(struct cmd_ctx *c)
 }
 
 /*
- * set view VIEW [tint=rula|reba|owas|off] [loads=on|off]: the humans in the
+ * set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off]: the humans in the
  * view coloured by that assessment's part scores (view_tint.h), or in their
  * own colours; the loads on the figures drawn as arrows, or not
  */
@@ -150,9 +150,9 @@ cmd_set_view(struct cmd_ctx *c)
 	const char *tint = cmd_key(c, "tint"), *loads = cmd_key(c, "loads");
 	int t = tint ? env_tint_find(tint) : -1;
 	if (!tint && !loads)
-		return cmd_fail(c, "arity", "set view VIEW [tint=rula|reba|owas|off] [loads=on|off]");
+		return cmd_fail(c, "arity", "set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off]");
 	if (tint && t < 0)
-		return cmd_fail(c, "bad-argument", "tint=rula|reba|owas|off, not '%.40s'", tint);
+		return cmd_fail(c, "bad-argument", "tint=rula|reba|owas|strength|off, not '%.40s'", tint);
 	if (loads && strcmp(loads, "on") && strcmp(loads, "off"))
 		return cmd_fail(c, "bad-argument", "loads=on|off, not '%.40s'", loads);
 	struct env_view *w = &c->d->env.view[v];

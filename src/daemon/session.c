@@ -719,7 +719,7 @@ read_view(struct reader *r, struct env *e)
 	struct env_view v = { .used = 1, .fovy_deg = ENV_VIEW_FOVY_DEG };
 	const char *fovy = arg(w, 2, "fovy"), *tint = arg(w, 2, "tint"), *loads = arg(w, 2, "loads");
 	if (tint && (v.tint = env_tint_find(tint)) < 0)
-		return fail(r, "view %s: tint=rula|reba|owas|off", w->w[1]);
+		return fail(r, "view %s: tint=rula|reba|owas|strength|off", w->w[1]);
 	if (loads && strcmp(loads, "on") && strcmp(loads, "off"))
 		return fail(r, "view %s: loads=on|off", w->w[1]);
 	v.loads_hidden = loads && !strcmp(loads, "off");
@@ -733,7 +733,7 @@ read_view(struct reader *r, struct env *e)
 	    (fovy && (words_number(fovy, UNIT_NONE, &v.fovy_deg) < 0 ||
 		      v.fovy_deg < ENV_VIEW_FOVY_MIN || v.fovy_deg > ENV_VIEW_FOVY_MAX)))
 		return fail(r, "expected: view NAME width=W height=H icons=0|1 eye=X,Y,Z target=X,Y,Z "
-			       "[fovy=DEG] [tint=rula|reba|owas|off] [loads=on|off]");
+			       "[fovy=DEG] [tint=rula|reba|owas|strength|off] [loads=on|off]");
 	snprintf(v.name, sizeof v.name, "%s", w->w[1]);
 	v.width = (int)wd;
 	v.height = (int)ht;

@@ -343,7 +343,7 @@ env_find_view(const struct env *e, const char *name)
 	return -1;
 }
 
-static const char *const tint_names[ENV_TINT_N] = { "off", "rula", "reba", "owas" };
+static const char *const tint_names[ENV_TINT_N] = { "off", "rula", "reba", "owas", "strength" };
 
 const char *
 env_tint_str(int tint)

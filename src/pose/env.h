@@ -139,14 +139,16 @@ struct env_show {
 
 /*
  * What a view's tint colours the humans' body parts by: nothing (their own
- * colours), or a posture assessment's part scores (the daemon's
- * assessment; this layer only keeps the choice).
+ * colours), a posture assessment's part scores, or the percent of the
+ * population strong enough at each joint under the loads (the daemon's
+ * analyses; this layer only keeps the choice).
  */
 enum env_tint {
 	ENV_TINT_OFF,
 	ENV_TINT_RULA,
 	ENV_TINT_REBA,
 	ENV_TINT_OWAS,
+	ENV_TINT_STRENGTH,
 	ENV_TINT_N,
 };
 
@@ -223,7 +225,7 @@ int env_solver_index(const struct env *e, int slot);
 
 /* a view by name, or -1 */
 int env_find_view(const struct env *e, const char *name);
-/* a tint's name ("off", "rula", "reba", "owas"; "?" out of range), and back (-1: none such) */
+/* a tint's name ("off", "rula", "reba", "owas", "strength"; "?" out of range), and back (-1: none such) */
 const char *env_tint_str(int tint);
 int env_tint_find(const char *name);
 
