@@ -600,8 +600,9 @@ read_behave(struct reader *r, struct env *e)
 		f->behave = b;
 	}
 	f->ik_stale = 1;
-	/* what the behaviours measure, measured again on the posture read above */
-	behave_measure(b, f->model, f->state);
+	/* what the behaviours measure, measured again on the posture read above (f->behave:
+	 * b may have been copied into it and freed) */
+	behave_measure(f->behave, f->model, f->state);
 	return 0;
 }
 
