@@ -239,13 +239,14 @@ def test_a_grabbed_object_weighs_on_the_hand_at_its_centre_of_mass(daemon_factor
         c.request("settle")
         box = c.request("show figure box")
         got = carried(c)
-        assert set(got) == {("right", None), ("right", c.request("list loads box")["loads"][0]["load"])}
+        books_id = c.request("list loads box")["loads"][0]["load"]
+        assert set(got) == {("right", None), ("right", books_id)}
         weight = got[("right", None)]
         assert weight["object"] == "box" and weight["share"] == 1
         assert weight["mass"] == box["mass"] == 10
         assert close3(weight["force"], [0, -10 * G, 0], 1e-12)
         assert close3(weight["position"], box["com"], 1e-9)  # the weight at the centre of mass
-        books = got[("right", c.request("list loads box")["loads"][0]["load"])]
+        books = got[("right", books_id)]
         top = c.request("get site box box.top")["position"]
         assert books["mass"] == 2.5 and close3(books["position"], top, 1e-9)
         # the box follows the hand: its weight stays at its centre of mass
