@@ -274,7 +274,8 @@ loads_json_keys(struct jbuf *j, const struct env *e, int fig, const struct loads
 }
 
 void
-loads_json_summary_keys(struct jbuf *j, const struct env *e, int fig, const struct loads_live_fig *a)
+loads_json_summary_keys(struct jbuf *j, const struct env *e, int fig,
+			const struct loads_live_fig *a)
 {
 	jbuf_key(j, "low_back", 0);
 	if (a->low_back)
