@@ -115,10 +115,15 @@ BAD = [
 
 def test_bad_input_is_refused_clearly_and_changes_nothing(daemon):
     with daemon.client() as c:
-        c.request("load human as jack")
+        gone = c.request("load human as ghost")["figure"]
+        c.request("unload figure ghost")
+        c.request("load human as jack")  # in the ghost's slot: its id is stale
         c.request("add load jack hand_r.palm mass=5 as bag")
         before = loads_state(c)
-        for line, code, words in BAD:
+        stale = [(f"add load {gone} hand_r.palm mass=5", "stale-id", "is stale"),
+                 (f"list loads {gone}", "stale-id", "is stale"),
+                 (f"analyze loads {gone}", "stale-id", "is stale")]
+        for line, code, words in BAD + stale:
             r = c.request_reply(line)
             assert r["ok"] is False, line
             assert r["error"]["code"] == code, (line, r)
@@ -214,6 +219,25 @@ def test_a_crash_keeps_every_load_command(daemon):
     daemon.start()
     with daemon.client() as c:
         assert c.request("list loads") == want
+
+
+def test_a_crash_keeps_what_the_loads_do(daemon_factory):
+    """kill -9 with a box carried in two hands and loads on both: the analysis after
+    recovery is the one before, number for number."""
+    d = daemon_factory(extra=LIBRARY)
+    with d.client() as c:
+        box_scene(c, at=(0.05, 0.75, 0.3))
+        c.request("grab jack right box")
+        c.request("hold hand jack left box")
+        c.request("add load box box.top mass=3")
+        c.request("add load jack head.origin force=0,-20,5")
+        c.request("settle")
+        before = c.request("analyze loads jack")
+    d.restart()
+    with d.client() as c:
+        after = c.request("analyze loads jack")
+    before.pop("frame"), after.pop("frame")
+    assert after == before
 
 
 # ---- what the hands carry -------------------------------------------------------------
