@@ -328,6 +328,33 @@ def test_two_hands_share_the_weight_by_the_lever_rule(daemon_factory, box_x):
             assert close3(x["position"], [p[i] + box["com"][i] - mid[i] for i in range(3)], 1e-9)
 
 
+def test_more_than_two_hands_share_equally(daemon_factory):
+    """Two people carrying one box, three hands on it: a third each (the rule for more than
+    two hands), together the weight at the centre of mass."""
+    with daemon_factory(extra=LIBRARY).client() as c:
+        box_scene(c, at=(0.05, 0.75, 0.3))
+        c.request("load human as jill")
+        c.request("set location jill 0 0 0.7")
+        c.request("behave jill on")
+        c.request("grab jack right box")
+        c.request("hold hand jack left box")
+        c.request("hold hand jill right box")
+        c.request("settle")
+        hands = c.request("list loads")["carried"]
+        assert sorted((x["figure"], x["hand"]) for x in hands) == [
+            ("jack", "left"), ("jack", "right"), ("jill", "right")]
+        box = c.request("show figure box")
+        W = [0, -10 * G, 0]
+        for x in hands:
+            assert x["share"] == pytest.approx(1 / 3, abs=1e-15)
+            assert close3(x["force"], [w / 3 for w in W], 1e-12)
+        assert close3(add3(*(x["force"] for x in hands)), W, 1e-12)
+        moment = add3(*(cross(x["position"], x["force"]) for x in hands))
+        assert close3(moment, cross(box["com"], W), 1e-9)
+        # each person's analysis counts its own hands' shares
+        assert len(c.request("analyze loads jill")["loads"]) == 1
+
+
 def test_a_place_held_on_a_fixed_thing_carries_nothing(daemon_factory):
     """hold hand on a table (not grabbed by anyone): the hand follows it, it weighs nothing
     on the hand; the same as soon as the box is grabbed by the other hand weighs."""
