@@ -693,3 +693,20 @@ def test_a_recording_replays_to_the_same_analysis(daemon_factory, tmp_path):
     replayed = replies[0]["result"]
     replayed.pop("frame")
     assert replayed == live
+
+
+def test_more_loads_than_the_statics_solves_are_refused_clearly(daemon_factory):
+    """64 loads on a box, carried in one hand: 65 loads on the hand's figure, one more than
+    the statics solves: analyze refuses it and says so, the rest goes on."""
+    with daemon_factory(extra=LIBRARY).client() as c:
+        box_scene(c)
+        c.request("grab jack right box")
+        added = c.pipeline([f"add load box box.top mass=0.1 as w{i}" for i in range(64)])
+        assert all(r["ok"] for r in added)
+        r = c.request_reply("add load jack head.origin mass=1")
+        assert r["error"]["code"] == "limit" and "64 loads at most" in r["error"]["message"]
+        err = c.request_reply("analyze loads jack")["error"]
+        assert err["code"] == "bad-argument" and "65 loads" in err["message"], err
+        assert len(c.request("list loads jack")["carried"]) == 65
+        c.request("delete load w0")
+        assert len(c.request("analyze loads jack")["loads"]) == 64
