@@ -613,6 +613,29 @@ def test_a_drag_tells_the_compression_at_the_frame_it_changes(daemon_factory):
         assert e["low_back"]["compression"] == seen[e["frame"]]["compression"]
 
 
+def test_the_loops_own_frames_tell_the_change_with_no_command_running(daemon_factory):
+    """A goal moved, then the loop's own frames (as a drag at the kiosk runs): the loads
+    event of the frame that moved the arm comes while no command runs, numbered as that
+    frame, the one right after the goal moved."""
+    d = daemon_factory(fps=10)
+    with d.client() as c, d.client() as watch:
+        c.request("load human as jack")
+        c.request("add load jack hand_r.palm mass=10")
+        shoulder = c.request("get site jack upperarm_r.origin")["position"]
+        arc = [(shoulder[0], shoulder[1] - 0.58 * math.cos(math.radians(t)),
+                shoulder[2] + 0.58 * math.sin(math.radians(t))) for t in (30, 50)]
+        c.request("add constraint jack effector=hand_r.palm as drag start=shoulder_r "
+                  "goal=%.6f,%.6f,%.6f" % arc[0])
+        c.request("settle frames=20")
+        watch.subscribe("loads")
+        told = watch.next_event(timeout=5)
+        replies = c.pipeline(["set goal drag %.6f %.6f %.6f" % arc[1], "analyze loads jack"])
+        moved_at = replies[1]["result"]["frame"]
+        event = watch.next_event(timeout=5)  # c sends nothing meanwhile
+        assert event["frame"] == moved_at + 1
+        assert event["low_back"]["compression"] > told["low_back"]["compression"] + 50
+
+
 def test_the_status_line_shows_the_low_back_and_the_weakest_joint(daemon):
     with daemon.client() as c:
         c.request("add view main width=1280 height=400 eye=0,1.4,5 target=0,0.9,0")
