@@ -417,11 +417,12 @@ struct loads_in {
 
 /*
  * "SEG.SITE,X,Y,..." -> the load's segment and point and the numbers after
- * the site (n of them, n in [min, max]); 0, or -1 said on stderr
+ * the site (n of them, n in [min, max]; what says what they are); 0, or
+ * -1 said on stderr
  */
 static int
-parse_site_numbers(const struct model *m, const char *opt, const char *text, struct ext_load *l,
-		   double *v, int min, int max, int *n)
+parse_site_numbers(const struct model *m, const char *opt, const char *text, const char *what,
+		   struct ext_load *l, double *v, int min, int max, int *n)
 {
 	const char *comma = strchr(text, ',');
 	char name[2 * MODEL_NAME_MAX];
@@ -450,12 +451,13 @@ parse_site_numbers(const struct model *m, const char *opt, const char *text, str
 		p = end;
 	}
 	if (*n < min) {
-		fprintf(stderr, "posture-figure: %s '%s': the site and then %d%s numbers\n", opt, text,
-			min, max > min ? " or more" : "");
+		fprintf(stderr, "posture-figure: %s '%s': SEGMENT.SITE and then %s\n", opt, text, what);
 		return -1;
 	}
 	return 0;
 }
+
+#define LOAD_NUMBERS "a force FX,FY,FZ (N) and optionally a torque TX,TY,TZ (N m)"
 
 /* the --load and --weight options as loads on m; 0, or -1 said on stderr */
 static int
@@ -468,7 +470,8 @@ loads_read(const struct model *m, const struct options *o, struct loads_in *dest
 		double v[6] = { 0 };
 		int n;
 		if (o->load[i].weight) {
-			if (parse_site_numbers(m, "--weight", o->load[i].text, l, v, 1, 1, &n) < 0)
+			if (parse_site_numbers(m, "--weight", o->load[i].text, "the mass (kg)", l, v, 1, 1,
+					       &n) < 0)
 				return -1;
 			if (!(v[0] > 0)) {
 				fprintf(stderr, "posture-figure: --weight '%s': the mass is above 0 kg\n",
@@ -478,11 +481,12 @@ loads_read(const struct model *m, const struct options *o, struct loads_in *dest
 			l->mass = v[0];
 			l->force[1] = -v[0] * LOAD_GRAVITY;
 		} else {
-			if (parse_site_numbers(m, "--load", o->load[i].text, l, v, 3, 6, &n) < 0)
+			if (parse_site_numbers(m, "--load", o->load[i].text, LOAD_NUMBERS, l, v, 3, 6,
+					       &n) < 0)
 				return -1;
 			if (n != 3 && n != 6) {
-				fprintf(stderr, "posture-figure: --load '%s': a force (3 numbers) and "
-						"optionally a torque (3 more)\n", o->load[i].text);
+				fprintf(stderr, "posture-figure: --load '%s': SEGMENT.SITE and then %s\n",
+					o->load[i].text, LOAD_NUMBERS);
 				return -1;
 			}
 			memcpy(l->force, v, sizeof l->force);

@@ -29,9 +29,17 @@
  *   rotation (wrist: pronation, spine: turning to the left). + is a moment
  *   the muscles must supply in that sense; the right side is mirrored as
  *   the dofs are, so one number means one anatomical thing on both sides.
+ *   For the 3-dof joints these are the dofs' generalised torques: the
+ *   moment's orthogonal projections on the joint coordinate system's axes
+ *   (the proximal segment's flexion axis, the floating axis, the distal
+ *   segment's long axis), the "motor torques" of Desroches, Cheze & Dumas
+ *   2010 (J Biomech Eng 132:114503), power-conjugate to the joint angles'
+ *   rates; they differ from the axes' non-orthogonal components where the
+ *   axes are far from perpendicular (the shoulder near 90 deg abduction).
  *   Knees and elbows (one dof) get their ab/adduction about the floating
  *   axis (the distal segment's forward axis) and rotation about its long
- *   axis, with the hip's and shoulder's signs on the same side.
+ *   axis, with the hip's and shoulder's signs on the same side: three
+ *   perpendicular axes, where both readings agree.
  *
  * Supports: standing, each foot on the floor (geometry within
  * BALANCE_CONTACT, pose/balance.h) at its balance site; seated (the caller

@@ -11,13 +11,15 @@ Pinocchio wants them), must give every dof's torque within 1e-6 N m, and zero on
 flyer: that the supports close the whole body's equilibrium, checked by Pinocchio's own sums.
 
 Cases, each 100 random postures within the joint limits with loads drawn afresh for each:
-gravity only (the human, the female default, a chair), forces and torques at the hands, a
+gravity only (the human, the female default, a chair, a vehicle seat with six dofs), forces and torques at the hands (also
+on a short heavy manikin built from measures), a
 weight on one hand, a box held in both hands, seated, and figures re-rooted at a foot and at
 a hand (the URDF then exported with the tree running from there, the free flyer above it).
 """
 import json
 import os
 import pathlib
+import re
 import subprocess
 
 import numpy as np
@@ -30,6 +32,7 @@ FIGURES = ROOT / "src" / "figure" / "library"
 G = 9.80665
 POSTURES = 100
 TOL = 1e-6  # N m, N
+URDF_NEGLIGIBLE_MASS, URDF_NEGLIGIBLE_INERTIA = 1e-9, 1e-12  # src/export/urdf.h
 
 
 def tool(*args):
@@ -61,8 +64,25 @@ class Reference:
         self.data = self.model.createData()
         self.dofs = read_dofs(fig)
         assert self.model.nq == 7 + len(self.dofs)
+        self.drop_negligible_masses()
         # the world link sits at the exported root's frame: Pinocchio's base moves with ours
         self.base0 = self.placement(pin.neutral(self.model), "world")
+
+    def drop_negligible_masses(self):
+        """The exporter gives each dof's link ("<joint>__<k>_link") and "world" 1e-9 kg
+        (urdf.h: simulators refuse massless moving bodies); the figure has no such masses.
+        Their ~1e-7 kg would weigh up to ~1e-6 N m on the joints: take each out of the
+        Pinocchio body it was merged into (inertias add as spatial inertias in the joint's
+        frame, so each subtracts exactly)."""
+        negligible = pin.Inertia(URDF_NEGLIGIBLE_MASS, np.zeros(3),
+                                 np.eye(3) * URDF_NEGLIGIBLE_INERTIA)
+        dropped = 0
+        for f in self.model.frames:
+            if f.type == pin.FrameType.BODY and (f.name == "world" or
+                                                 re.fullmatch(r".+__\d+_link", f.name)):
+                self.model.inertias[f.parentJoint] -= f.placement.act(negligible)
+                dropped += 1
+        assert dropped == 1 + len(self.dofs)
 
     def frame(self, name):
         fid = self.model.getFrameId(name)
@@ -150,7 +170,10 @@ CASES = {
     # name: (figure args, extra args, load kind, URDF root)
     "human-gravity": (["--human"], [], None, None),
     "female-gravity": (["--human", "--sex", "female"], [], None, None),
+    "manikin-hand-forces": (["--human", "--sex", "female", "--measure", "stature=1550",
+                             "--measure", "weightkg=85"], [], "hands", None),
     "chair-gravity": (["--figure", FIGURES / "chair.fig"], [], None, None),
+    "vehicle-seat-gravity": (["--figure", FIGURES / "vehicle_seat.fig"], [], None, None),
     "human-hand-forces": (["--human"], [], "hands", None),
     "human-hand-weight": (["--human"], [], "weight", None),
     "human-held-box": (["--human"], [], "box", None),
@@ -202,3 +225,22 @@ def test_joint_torques_match_pinocchio_rnea(case, tmp_path):
                 worst = max(worst, abs(tau[ref.dof_index(joint, k)] - ours))
     assert worst < TOL, f"a dof's torque differs from Pinocchio's RNEA by {worst:.3g}"
     assert worst_base < TOL, f"the supports leave {worst_base:.3g} on the free flyer"
+
+
+@pytest.mark.parametrize("args,says", [
+    (["--load", "hand_r.palm,1,2"], "and then a force FX,FY,FZ (N) and optionally a torque"),
+    (["--load", "hand_r.palm,1,2,3,4"], "and then a force FX,FY,FZ (N) and optionally a torque"),
+    (["--load", "hand_r.nowhere,1,2,3"], "no such site"),
+    (["--load", "hand_r.palm,1,x,3"], "and then a force"),
+    (["--weight", "hand_r.palm,-2"], "above 0 kg"),
+    (["--weight", "hand_r.palm,2,3"], "SEGMENT.SITE and then the mass (kg)"),
+    (["--weight", "hand_r.palm"], "no such site"),
+    (["--seated", "--figure", FIGURES / "chair.fig"], "ischial"),
+])
+def test_loads_refuses_bad_options_saying_why(args, says):
+    """a bad load is an error that says what is wrong, and nothing is printed"""
+    proc = subprocess.run([str(BUILD / "bin" / "posture-figure"), *map(str, args), "loads"],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode != 0
+    assert says in proc.stderr, proc.stderr
+    assert proc.stdout == ""
