@@ -81,7 +81,7 @@ snapshot(const struct rig *r, const char *name, const double eye[3])
 	view_camera_aim(&cam, eye, target);
 	view_begin(dl, &cam, 480, 360);
 	view_add_figure(dl, r->m, r->s, 0);
-	view_add_balance(dl, r->m, r->s);
+	view_add_balance(dl, r->m, r->s, NULL);
 	view_add_status(dl, name, NULL, -1);
 	struct frame f;
 	assert_int_equal(render_frame(ren, dl, 0, &f), 0);

@@ -481,7 +481,7 @@ test_assess_settings_round_trip_and_old_sessions_take_the_defaults(void **unused
 	env_init(&e);
 	char *text = session_to_string_with(&e, &cfg, &len);
 	assert_non_null(text);
-	assert_non_null(strstr(text, "session 4\n"));
+	assert_non_null(strstr(text, "session 5\n"));
 	assert_non_null(strstr(text, " shoulder_raised=12.5 "));
 	env_init(&back);
 	assert_int_equal(session_read_with(text, len, ".", NULL, &back, &got, err, sizeof err), 0);

@@ -116,6 +116,8 @@ names_figure(const struct env *e, const char *word, int fig)
 	}
 	if (slot < 0 && (slot = env_find_constraint(e, w)) >= 0)
 		slot = e->con[slot].fig;
+	if (slot < 0 && (slot = env_find_load(e, w)) >= 0)
+		slot = e->load[slot].fig;
 	return slot == fig;
 }
 
@@ -268,6 +270,7 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	free(before);
 	out->ok = rc == 0;
 	out->mutated = rc == 0 && (e->flags & CMD_MUTATES);
+	d->mutations += out->mutated;
 	out->close = c.quit;
 	out->json = dump_reply(rc == 0, w.tag, c.result, c.code ? c.code : "internal", c.msg);
 }

@@ -63,6 +63,15 @@ cmd_constraint(struct cmd_ctx *c, const char *ref)
 	return slot;
 }
 
+int
+cmd_load_ref(struct cmd_ctx *c, const char *ref)
+{
+	int slot = env_find_load(&c->d->env, ref);
+	if (slot < 0)
+		return resolve_error(c, slot, "load", ref);
+	return slot;
+}
+
 const char *
 cmd_key(struct cmd_ctx *c, const char *key)
 {

@@ -36,6 +36,7 @@ int cmd_fail(struct cmd_ctx *c, const char *code, const char *fmt, ...)
 /* shared argument helpers for handlers */
 int cmd_figure(struct cmd_ctx *c, const char *ref);       /* slot or -1 with the error set */
 int cmd_constraint(struct cmd_ctx *c, const char *ref);   /* slot or -1 */
+int cmd_load_ref(struct cmd_ctx *c, const char *ref);     /* a load's slot or -1 */
 int cmd_side(struct cmd_ctx *c, const char *w);          /* left 0, right 1, or -1 */
 const char *cmd_key(struct cmd_ctx *c, const char *key);  /* "key=value" among the args */
 /* path inside the state directory: 0 with the full path in dest, or -1 with the error set */

@@ -5,6 +5,7 @@
 
 #include "daemon/cmd_ctx.h"
 #include "pose/balance.h"
+#include "pose/load_balance.h"
 #include "figure/kin.h"
 
 static int
@@ -184,7 +185,11 @@ cmd_get_balance(struct cmd_ctx *c)
 		return -1;
 	const struct env_figure *f = &c->d->env.fig[fig];
 	struct balance b;
-	if (balance_measure(f->model, f->state, BALANCE_CONTACT, &b) < 0)
+	struct point_mass pm[POINT_MASS_MAX];
+	int npm = load_balance_masses(&c->d->env, fig, pm);
+	double com[3]; /* the body's with the weights it carries */
+	point_mass_com(f->state, pm, npm > 0 ? npm : 0, com);
+	if (balance_measure_com(f->model, f->state, BALANCE_CONTACT, 0, com, &b) < 0)
 		return cmd_fail(c, "bad-argument", "figure %s has no feet to balance on", f->name);
 	json_t *poly = json_array();
 	for (int i = 0; i < b.npoly; i++)
@@ -199,5 +204,10 @@ cmd_get_balance(struct cmd_ctx *c)
 	json_object_set_new(c->result, "z", json_real(b.z));
 	json_object_set_new(c->result, "margin", json_real(b.margin));
 	json_object_set_new(c->result, "weight_left", json_real(b.weight_l));
+	json_object_set_new(c->result, "com", cmd_vec(b.com, 3));
+	double carried = 0; /* kg of weights on the feet besides the body's */
+	for (int i = 0; i < npm; i++)
+		carried += pm[i].mass;
+	json_object_set_new(c->result, "carried", json_real(carried));
 	return 0;
 }

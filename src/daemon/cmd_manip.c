@@ -210,10 +210,10 @@ manipulate_primitive(struct cmd_ctx *c, enum interact_primitive kind)
 	} else if (kind == INTERACT_TORSO) { /* on the chest, in the pelvis's axes: the bend's */
 		g = f->state->site_xf[b->s_pelvis];
 		memcpy(g.p, f->state->site_xf[b->s_chest].p, sizeof g.p);
-	} else if (kind == INTERACT_COM) { /* the centre of mass, in the world's axes */
+	} else if (kind == INTERACT_COM) { /* the centre of mass balanced, in the world's axes */
 		kin_com(f->model, f->state);
 		xform_identity(&g);
-		memcpy(g.p, f->state->com, sizeof g.p);
+		behave_com(b, f->state, g.p);
 	} else { /* the point fixated, or 1 m along the head's (an eye's) +z, the aim axis */
 		int eyes = kind == INTERACT_EYES;
 		const struct xform *site = &f->state->site_xf[eyes ? b->s_eye[0] : b->s_head];

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "daemon/assess_live.h"
+#include "daemon/loads_live.h"
 #include "daemon/cmd_ctx.h"
 #include "draw/frame_writer.h"
 #include "draw/kms_pick.h"
@@ -233,6 +234,9 @@ cmd_status(struct cmd_ctx *c)
 	/* the figures' assessments computed so far (a cached one counts none) */
 	json_object_set_new(c->result, "assessments",
 			    json_integer((json_int_t)assess_live_computed(c->d)));
+	/* ... and their loads analyses */
+	json_object_set_new(c->result, "load_analyses",
+			    json_integer((json_int_t)loads_live_computed(c->d)));
 	return 0;
 }
 
@@ -246,15 +250,15 @@ sub_kinds(struct cmd_ctx *c, unsigned *kinds)
 		      { "message", SUB_MESSAGE }, { "frame", SUB_FRAME },
 		      { "stability", SUB_STABILITY }, { "alert", SUB_ALERT },
 		      { "input", SUB_INPUT }, { "kiosk", SUB_KIOSK },
-		      { "assessment", SUB_ASSESSMENT } };
+		      { "assessment", SUB_ASSESSMENT }, { "loads", SUB_LOADS } };
 	for (size_t i = 0; i < sizeof names / sizeof *names; i++)
 		if (!strcmp(c->argv[0], names[i].name)) {
 			*kinds = names[i].kind;
 			return 0;
 		}
 	return cmd_fail(c, "bad-argument",
-			"events are posture, telemetry, message, frame, stability, alert, input, kiosk "
-			"or assessment");
+			"events are posture, telemetry, message, frame, stability, alert, input, kiosk, "
+			"assessment or loads");
 }
 
 static int

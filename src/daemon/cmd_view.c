@@ -136,25 +136,33 @@ cmd_set_camera(struct cmd_ctx *c)
 }
 
 /*
- * set view VIEW tint=rula|reba|owas|off: the humans in the view coloured
- * by that assessment's part scores (view_tint.h), or in their own colours
+ * set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off]: the humans in the
+ * view coloured by that assessment's part scores (view_tint.h), or in their
+ * own colours; the loads on the figures drawn as arrows, or not
  */
 int
 cmd_set_view(struct cmd_ctx *c)
 {
-	static const char *const keys[] = { "tint" };
+	static const char *const keys[] = { "tint", "loads" };
 	int v = view_of(c, c->argv[0]);
-	if (v < 0 || only_keys(c, 1, keys, 1) < 0)
+	if (v < 0 || only_keys(c, 1, keys, 2) < 0)
 		return -1;
-	const char *tint = cmd_key(c, "tint");
+	const char *tint = cmd_key(c, "tint"), *loads = cmd_key(c, "loads");
 	int t = tint ? env_tint_find(tint) : -1;
-	if (!tint)
-		return cmd_fail(c, "arity", "set view VIEW tint=rula|reba|owas|off");
-	if (t < 0)
-		return cmd_fail(c, "bad-argument", "tint=rula|reba|owas|off, not '%.40s'", tint);
-	c->d->env.view[v].tint = t;
-	json_object_set_new(c->result, "view", json_string(c->d->env.view[v].name));
-	json_object_set_new(c->result, "tint", json_string(env_tint_str(t)));
+	if (!tint && !loads)
+		return cmd_fail(c, "arity", "set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off]");
+	if (tint && t < 0)
+		return cmd_fail(c, "bad-argument", "tint=rula|reba|owas|strength|off, not '%.40s'", tint);
+	if (loads && strcmp(loads, "on") && strcmp(loads, "off"))
+		return cmd_fail(c, "bad-argument", "loads=on|off, not '%.40s'", loads);
+	struct env_view *w = &c->d->env.view[v];
+	if (tint)
+		w->tint = t;
+	if (loads)
+		w->loads_hidden = !strcmp(loads, "off");
+	json_object_set_new(c->result, "view", json_string(w->name));
+	json_object_set_new(c->result, "tint", json_string(env_tint_str(w->tint)));
+	json_object_set_new(c->result, "loads", json_string(w->loads_hidden ? "off" : "on"));
 	return 0;
 }
 
@@ -259,6 +267,7 @@ cmd_list_views(struct cmd_ctx *c)
 		json_object_set_new(o, "fovy", json_real(v->fovy_deg));
 		json_object_set_new(o, "icons", json_boolean(v->icons));
 		json_object_set_new(o, "tint", json_string(env_tint_str(v->tint)));
+		json_object_set_new(o, "loads", json_string(v->loads_hidden ? "off" : "on"));
 		json_array_append_new(list, o);
 	}
 	json_object_set_new(c->result, "views", list);

@@ -24,6 +24,7 @@
 
 struct kms_times_summary; /* draw/kms_pick.h */
 struct assess_live;       /* daemon/assess_live.h */
+struct loads_live;        /* daemon/loads_live.h */
 
 #define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
 #define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
@@ -92,6 +93,7 @@ enum sub_kind {
 	SUB_INPUT = 1 << 6,     /* every input event, decoded, as the loop takes it */
 	SUB_KIOSK = 1 << 7,     /* the kiosk's mode and step, as they change */
 	SUB_ASSESSMENT = 1 << 8, /* a figure's RULA, REBA and OWAS scores, as they change */
+	SUB_LOADS = 1 << 9,      /* a figure's low back, weakest joint and supports, as they change */
 };
 
 /* the client a command comes from when no connection sent it */
@@ -226,6 +228,10 @@ struct daemon {
 	uint64_t assess_serial;
 	/* each figure's assessment now (assess_live.h); NULL until first asked */
 	struct assess_live *assess_live;
+	/* each figure's loads analysis now (loads_live.h); NULL until first asked */
+	struct loads_live *loads_live;
+	/* commands that changed something, counted: what a cached analysis was made under */
+	uint64_t mutations;
 };
 
 /* frees the undo and redo texts */

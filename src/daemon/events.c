@@ -3,11 +3,14 @@
 
 #include <libevdev/libevdev.h>
 #include <linux/input-event-codes.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "daemon/assess_json.h"
 #include "daemon/assess_live.h"
+#include "daemon/loads_json.h"
+#include "daemon/loads_live.h"
 
 int
 events_init(struct events *E, struct server *srv, const struct daemon *d)
@@ -430,5 +433,108 @@ events_assessment(struct events *E, struct daemon *d)
 		jbuf_num(j, a->load_kg);
 		jbuf_raw(j, "}");
 		events_send(E, SUB_ASSESSMENT);
+	}
+}
+
+/* ---- loads ------------------------------------------------------------------------ */
+
+/*
+ * How much a figure's analysis must change to be told again: a drag moves
+ * the numbers every frame, the event tells what a person would notice.
+ * 50 N of disc compression is 1.5 % of NIOSH's action limit (3400 N) and
+ * about the weight of a forearm and hand; 1 percentage point of the
+ * population capable is the resolution the status line shows; 10 N on a
+ * foot is 1 kg moved from one foot to the other.
+ */
+#define LOADS_TELL_COMPRESSION_N 50.0
+#define LOADS_TELL_CAPABLE_PCT 1.0
+#define LOADS_TELL_SUPPORT_N 10.0
+
+void
+events_loads_retell(struct events *E)
+{
+	memset(E->told_loads, 0, sizeof E->told_loads);
+}
+
+static uint64_t
+loads_identity(const struct loads_live_fig *a)
+{
+	uint64_t h = 14695981039346656037ull;
+	for (int k = 0; k < a->nloads; k++) {
+		const int v[3] = { a->origin[k].load, a->origin[k].carried, a->origin[k].side };
+		for (size_t b = 0; b < sizeof v; b++)
+			h = (h ^ ((const unsigned char *)v)[b]) * 1099511628211ull;
+	}
+	return h ^ (uint64_t)a->nloads;
+}
+
+/* what an event would tell of a now */
+static void
+loads_told_of(const struct loads_live_fig *a, uint32_t gen, struct events_loads_told *t)
+{
+	memset(t, 0, sizeof *t);
+	t->gen = gen;
+	t->low_back = a->low_back;
+	t->zone = a->low_back ? (int)a->lb.zone : -1;
+	t->compression = a->low_back ? a->lb.compression : 0;
+	int weak = a->strength && !isnan(a->sr.capable);
+	t->weakest_joint = weak ? a->sr.weakest_joint : -1;
+	t->weakest_axis = weak ? a->sr.weakest_axis : -1;
+	t->capable = weak ? a->sr.capable : NAN;
+	t->nsupport = a->st.nsupport;
+	t->tips = a->st.tips;
+	for (int k = 0; k < a->st.nsupport && k < STATICS_MAX_SUPPORT; k++) {
+		t->support_site[k] = a->st.support[k].site;
+		memcpy(t->support_force[k], a->st.support[k].force, sizeof t->support_force[k]);
+	}
+	t->loads_id = loads_identity(a);
+}
+
+/* 1 when now differs from what was told by more than the thresholds */
+static int
+loads_changed(const struct events_loads_told *was, const struct events_loads_told *now)
+{
+	if (was->gen != now->gen || was->low_back != now->low_back || was->zone != now->zone ||
+	    was->weakest_joint != now->weakest_joint || was->weakest_axis != now->weakest_axis ||
+	    was->nsupport != now->nsupport || was->tips != now->tips || was->loads_id != now->loads_id)
+		return 1;
+	if (fabs(now->compression - was->compression) >= LOADS_TELL_COMPRESSION_N)
+		return 1;
+	if (now->weakest_joint >= 0 && fabs(now->capable - was->capable) >= LOADS_TELL_CAPABLE_PCT)
+		return 1;
+	for (int k = 0; k < now->nsupport && k < STATICS_MAX_SUPPORT; k++) {
+		double d2 = 0;
+		for (int i = 0; i < 3; i++) {
+			double dv = now->support_force[k][i] - was->support_force[k][i];
+			d2 += dv * dv;
+		}
+		if (now->support_site[k] != was->support_site[k] ||
+		    d2 >= LOADS_TELL_SUPPORT_N * LOADS_TELL_SUPPORT_N)
+			return 1;
+	}
+	return 0;
+}
+
+void
+events_loads(struct events *E, struct daemon *d)
+{
+	if (!events_wanted(E, SUB_LOADS))
+		return;
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		const struct env_figure *f = &d->env.fig[i];
+		if (!f->gen)
+			continue;
+		const struct loads_live_fig *a = loads_live_of(d, i);
+		if (!a)
+			continue;
+		struct events_loads_told now;
+		loads_told_of(a, f->gen, &now);
+		if (!loads_changed(&E->told_loads[i], &now))
+			continue;
+		E->told_loads[i] = now;
+		struct jbuf *j = events_begin(E, "loads", f->name);
+		loads_json_summary_keys(j, &d->env, i, a);
+		jbuf_raw(j, "}");
+		events_send(E, SUB_LOADS);
 	}
 }

@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "assess/assess.h"
+#include "assess/statics.h"
 #include "daemon/daemon.h"
 #include "daemon/jbuf.h"
 #include "daemon/server.h"
@@ -30,6 +31,22 @@ struct events_assess_told {
 	} m[ASSESS_NMETHODS];
 };
 
+/*
+ * What a loads event told of a figure, compared with the analysis now to
+ * know when to tell again (the thresholds are events.c's, LOADS_TELL_*).
+ */
+struct events_loads_told {
+	uint32_t gen; /* 0: nothing told */
+	int low_back, zone;
+	double compression; /* N */
+	int weakest_joint, weakest_axis; /* -1: none */
+	double capable;     /* percent; NAN: none */
+	int nsupport, tips;
+	int support_site[STATICS_MAX_SUPPORT];
+	double support_force[STATICS_MAX_SUPPORT][3];
+	uint64_t loads_id; /* which loads act (their origins), not their numbers */
+};
+
 struct events {
 	struct server *srv;     /* the clients and their subscriptions */
 	const struct daemon *d; /* what the events tell of */
@@ -39,6 +56,7 @@ struct events {
 	int limit_dofs[EVENTS_LIMITS_REPORTED];
 	char told_kiosk[256]; /* the kiosk's state as the last kiosk event told it */
 	struct events_assess_told told_assess[ENV_MAX_FIGURES];
+	struct events_loads_told told_loads[ENV_MAX_FIGURES];
 };
 
 /* 0, or -1 when out of memory (events_free cleans up either way) */
@@ -66,6 +84,17 @@ void events_posture_changes(struct events *E);
 void events_assessment(struct events *E, struct daemon *d);
 /* every human's assessment told again at the next events_assessment (a client subscribed) */
 void events_assessment_retell(struct events *E);
+/*
+ * A loads event for every figure whose analysis changed since the last one
+ * told it by more than the thresholds (events.c): its low back's
+ * compression by LOADS_TELL_COMPRESSION_N or a NIOSH zone crossed, the
+ * weakest joint or axis, its percent capable by LOADS_TELL_CAPABLE_PCT, a
+ * support added or gone or its force by LOADS_TELL_SUPPORT_N, tipping, a
+ * load added or gone. Computed only while someone subscribes.
+ */
+void events_loads(struct events *E, struct daemon *d);
+/* every figure's loads told again at the next events_loads (a client subscribed) */
+void events_loads_retell(struct events *E);
 /* the message line under the pictures */
 void events_message(struct events *E);
 /*

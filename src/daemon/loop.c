@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "daemon/assess_live.h"
+#include "daemon/loads_live.h"
 #include "daemon/cmd.h"
 #include "daemon/kiosk_route.h"
 #include "daemon/notify.h"
@@ -133,6 +134,8 @@ subscribe(struct daemon *d, int client, unsigned kinds, int on)
 		return -1;
 	if (on && (kinds & SUB_ASSESSMENT)) /* a new subscriber hears every figure's scores now */
 		events_assessment_retell(&L->events);
+	if (on && (kinds & SUB_LOADS)) /* ... and every figure's loads */
+		events_loads_retell(&L->events);
 	if (on)
 		L->srv.c[client].subs |= kinds;
 	else
@@ -627,7 +630,8 @@ loop_setup(struct loop *L, const struct loop_config *cfg)
 	L->scene.wall_us = loop_real_now;
 	L->period_us = (uint64_t)(1e6 / cfg->fps);
 	server_init(&L->srv);
-	if (events_init(&L->events, &L->srv, &L->d) < 0 || assess_live_init(&L->d) < 0)
+	if (events_init(&L->events, &L->srv, &L->d) < 0 || assess_live_init(&L->d) < 0 ||
+	    loads_live_init(&L->d) < 0)
 		return -1;
 	if (cfg->panel_map) {
 		if (can_map_read(cfg->panel_map, &L->panel, err, sizeof err) < 0) {
@@ -818,6 +822,7 @@ loop_teardown(struct loop *L)
 	daemon_checkpoints_clear(&L->d.redo);
 	daemon_picks_free(&L->d);
 	assess_live_free(&L->d);
+	loads_live_free(&L->d);
 	daemon_text_clear(&L->d.file_read); /* the last command's file, if it read one */
 	daemon_text_clear(&L->d.file_given);
 	kiosk_free(L->modes.kiosk);

@@ -18,6 +18,7 @@
 #include "daemon/tape_dev.h"
 #include "pose/attach.h"
 #include "pose/behave.h"
+#include "pose/load_balance.h"
 
 uint64_t
 loop_real_now(void)
@@ -106,6 +107,7 @@ loop_command(struct loop *L, int client, const char *line, size_t len, struct cm
 	}
 	events_posture_changes(&L->events);
 	events_assessment(&L->events, &L->d);
+	events_loads(&L->events, &L->d);
 }
 
 int
@@ -169,6 +171,7 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 			break;
 		if (f->behave) /* hands and feet holding on to objects go where the objects are */
 			attach_before_solve(e, i);
+		load_balance_update(e, i); /* balance holds the weights it feels now too */
 		uint64_t t0 = loop_real_now();
 		struct ik_result r = f->behave ? behave_frame(f->behave, f->model, f->state, f->ik, &opt,
 							      clock)
@@ -202,6 +205,7 @@ loop_settle_frame(struct daemon *d, int *changed)
 	int rc = frame(L, &clock, L->period_us, changed);
 	events_posture_changes(&L->events);
 	events_assessment(&L->events, &L->d);
+	events_loads(&L->events, &L->d);
 	return rc;
 }
 
@@ -231,6 +235,7 @@ loop_live_frame(struct loop *L)
 	L->scene.dirty |= waiting || changed;
 	events_posture_changes(&L->events);
 	events_assessment(&L->events, &L->d);
+	events_loads(&L->events, &L->d);
 	uint64_t drawn = L->scene.drawn_us;
 	if (scene_publish(&L->scene, &L->d, &L->events, now)) {
 		/* rendering's share of the frame, smoothed: the solver gets the rest (§4.7.2) */

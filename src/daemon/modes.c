@@ -375,9 +375,11 @@ drive_primitive(struct modes *M, struct env_figure *f, struct interact *ia)
 		break;
 	case INTERACT_COM: {
 		/* move com shifts by offsets: those of G since the centre of mass last went */
+		/* the centre of mass balance holds: with the weights the figure carries */
+		double com[3];
 		kin_com(f->model, f->state);
-		double d[3] = { g.p[0] - f->state->com[0], g.p[1] - f->state->com[1],
-				g.p[2] - f->state->com[2] };
+		behave_com(b, f->state, com);
+		double d[3] = { g.p[0] - com[0], g.p[1] - com[1], g.p[2] - com[2] };
 		behave_move_com(b, f->model, f->state, f->ik, d[0], d[2], d[1]);
 		break;
 	}

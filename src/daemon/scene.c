@@ -9,10 +9,13 @@
 #include <string.h>
 
 #include "daemon/assess_live.h"
+#include "daemon/loads_json.h"
+#include "daemon/loads_live.h"
 #include "daemon/family.h"
 #include "daemon/tint.h"
 #include "draw/sink.h"
 #include "draw/tiles.h"
+#include "pose/load_balance.h"
 #include "interact/menu_draw.h"
 
 void
@@ -250,7 +253,9 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 							  : -1;
 	/* the kiosk's figure, and where its size comes from, after the view's name */
 	int fig = daemon_kiosk_figure(d);
-	char scores[40] = ""; /* a human's RULA and REBA grand scores now (the font is ASCII's) */
+	/* a human's RULA and REBA grand scores now (the font is ASCII's), its low back's
+	 * compression and the weakest joint's percent capable */
+	char scores[40] = "", loads[48] = "";
 	if (fig >= 0) {
 		memcpy(who, "   ", 3);
 		family_describe(&d->env, fig, who + 3, sizeof who - 3);
@@ -258,16 +263,18 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 		if (a)
 			snprintf(scores, sizeof scores, "   RULA %d, REBA %d", a->res[ASSESS_RULA].score,
 				 a->res[ASSESS_REBA].score);
+		if (d->env.fig[fig].is_human)
+			loads_json_status(loads_live_of(d, fig), loads, sizeof loads);
 	}
 	/* a line longer than the status's room loses its end: the timings, then the frame */
 	int n = 0;
 	if (caret < 0 && sc->replaying) /* the live timings are not the replay's: pictures stay alike */
-		n = snprintf(status, sizeof status, "%s%s%s   frame %llu   replay", vw->name, who,
-			     scores, (unsigned long long)d->stats.frame);
+		n = snprintf(status, sizeof status, "%s%s%s%s   frame %llu   replay", vw->name, who,
+			     scores, loads, (unsigned long long)d->stats.frame);
 	else if (caret < 0)
 		n = snprintf(status, sizeof status,
-			     "%s%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
-			     vw->name, who, scores, (unsigned long long)d->stats.frame, d->stats.fps,
+			     "%s%s%s%s   frame %llu   %.0f fps   solver %.0f us   drawing %.1f ms",
+			     vw->name, who, scores, loads, (unsigned long long)d->stats.frame, d->stats.fps,
 			     d->stats.ik_us, d->stats.draw_us / 1000);
 	if (n < 0)
 		status[0] = '\0';
@@ -275,6 +282,36 @@ add_lines(struct scene *sc, struct daemon *d, int v, int width)
 		snprintf(d->status_line, sizeof d->status_line, "%s", status);
 	view_add_status(sc->dl, status, manipulating && ia->message[0] ? ia->message : d->message,
 			caret);
+}
+
+/* a size for a label: whole units from 100 up, else three significant digits */
+static void
+size_text(char *dest, size_t len, double x, const char *unit)
+{
+	snprintf(dest, len, x >= 100 ? "%.0f %s" : "%.3g %s", x, unit);
+}
+
+/* the loads on figure fig as arrows at their sites, each labelled with its size */
+static void
+add_loads(struct drawlist *dl, const struct env *e, int fig)
+{
+	const struct state *s = e->fig[fig].state;
+	for (int k = 0; k < ENV_MAX_LOADS; k++) {
+		const struct env_load *l = &e->load[k];
+		if (!l->gen || l->fig != fig)
+			continue;
+		char label[64], a[28], b[28];
+		double fn = sqrt(mathx_dot(l->force, l->force)), tn = sqrt(mathx_dot(l->torque, l->torque));
+		if (l->mass > 0) {
+			size_text(label, sizeof label, l->mass, "kg");
+		} else {
+			size_text(a, sizeof a, fn, "N");
+			size_text(b, sizeof b, tn, "N m");
+			snprintf(label, sizeof label, "%s%s%s", fn > 0 ? a : "", fn > 0 && tn > 0 ? ", " : "",
+				 tn > 0 ? b : "");
+		}
+		view_add_load(dl, s->site_xf[l->site].p, l->force, l->torque, label);
+	}
 }
 
 int
@@ -307,11 +344,16 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 			view_add_figure_rgba(sc->dl, f->model, f->state, sc->mesh_base[i], tinted);
 		else
 			view_add_figure(sc->dl, f->model, f->state, sc->mesh_base[i]);
+		if (!vw->loads_hidden) /* what was put on the body, where it acts */
+			add_loads(sc->dl, e, i);
 		int dragged = manipulating && ia->mode == INTERACT_DRAG && ia->fig == i;
 		if (!vw->icons && !dragged)
 			continue;
-		if (f->is_human && vw->icons)
-			view_add_balance(sc->dl, f->model, f->state);
+		if (f->is_human && vw->icons) {
+			double com[3]; /* with the weights it carries */
+			load_balance_com(e, i, com);
+			view_add_balance(sc->dl, f->model, f->state, com);
+		}
 		env_sync_solver(e, i);
 		view_add_goals(sc->dl, f->ik, f->model, f->state);
 	}

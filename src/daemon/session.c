@@ -134,6 +134,28 @@ write_assess(const struct assess_config *cfg, FILE *f)
 	fprintf(f, "\n");
 }
 
+/* "load NAME slot= gen= figure= site= mass=KG | force=FX,FY,FZ torque=TX,TY,TZ" (session 5) */
+static void
+write_load(const struct env *e, int slot, FILE *f)
+{
+	const struct env_load *l = &e->load[slot];
+	if (!l->gen)
+		return;
+	const struct env_figure *fg = &e->fig[l->fig];
+	char site[2 * MODEL_NAME_MAX];
+	fprintf(f, "load %s slot=%d gen=%u figure=%s site=%s", l->name, slot, l->gen, fg->name,
+		model_site_fullname(fg->model, l->site, site, sizeof site));
+	if (l->mass > 0) { /* a weight is its mass: its force follows from it */
+		fprintf(f, " mass=%.17g\n", l->mass);
+		return;
+	}
+	fprintf(f, " force=");
+	write_vec(f, l->force, 3);
+	fprintf(f, " torque=");
+	write_vec(f, l->torque, 3);
+	fprintf(f, "\n");
+}
+
 int
 session_write(const struct env *e, FILE *f)
 {
@@ -170,6 +192,8 @@ session_write_with(const struct env *e, const struct assess_config *cfg, FILE *f
 		fprintf(f, "constraint %s slot=%d gen=%u figure=%s", c->name, i, c->gen, fg->name);
 		write_def(f, m, &c->def);
 	}
+	for (int i = 0; i < ENV_MAX_LOADS; i++)
+		write_load(e, i, f);
 	for (int i = 0; i < ENV_MAX_FIGURES; i++)
 		if (e->fig[i].gen && e->fig[i].behave)
 			write_behave(&e->fig[i], f);
@@ -196,6 +220,8 @@ session_write_with(const struct env *e, const struct assess_config *cfg, FILE *f
 		fprintf(f, " fovy=%.17g", v->fovy_deg);
 		if (v->tint != ENV_TINT_OFF) /* written only when on: untinted views read as before */
 			fprintf(f, " tint=%s", env_tint_str(v->tint));
+		if (v->loads_hidden) /* likewise: only when the loads' arrows are off */
+			fprintf(f, " loads=off");
 		fprintf(f, "\n");
 	}
 	if (e->nlayout) {
@@ -574,8 +600,9 @@ read_behave(struct reader *r, struct env *e)
 		f->behave = b;
 	}
 	f->ik_stale = 1;
-	/* what the behaviours measure, measured again on the posture read above */
-	behave_measure(b, f->model, f->state);
+	/* what the behaviours measure, measured again on the posture read above (f->behave:
+	 * b may have been copied into it and freed) */
+	behave_measure(f->behave, f->model, f->state);
 	return 0;
 }
 
@@ -610,6 +637,51 @@ read_constraint(struct reader *r, struct env *e)
 	return 0;
 }
 
+/*
+ * "load NAME slot=N gen=G figure=FIG site=SEG.SITE mass=KG" or "... force=
+ * FX,FY,FZ torque=TX,TY,TZ": a load on a figure defined above (session 5)
+ */
+static int
+read_load(struct reader *r, struct env *e)
+{
+	struct words *w = &r->w;
+	unsigned long slot, gen;
+	const char *figname = arg(w, 2, "figure"), *site = arg(w, 2, "site"), *mass = arg(w, 2, "mass"),
+		   *force = arg(w, 2, "force"), *torque = arg(w, 2, "torque");
+	struct env_load l = { .fig = figname ? find_fig(e, figname) : -1 };
+	l.site = l.fig >= 0 && site ? model_find_site(e->fig[l.fig].model, site) : -1;
+	int weight = mass && !force && !torque && w->n == 7;
+	int pushed = !mass && force && torque && w->n == 8;
+	if (w->n < 7 || !words_is_name(w->w[1]) || l.fig < 0 ||
+	    read_uint(arg(w, 2, "slot"), ENV_MAX_LOADS - 1, &slot) < 0 ||
+	    read_uint(arg(w, 2, "gen"), 0xffffffffu, &gen) < 0 || gen == 0 || !(weight || pushed))
+		return fail(r, "expected: load NAME slot=N gen=G figure=FIG site=SEG.SITE mass=KG | "
+			       "force=FX,FY,FZ torque=TX,TY,TZ, for a figure defined above");
+	if (l.site < 0)
+		return fail(r, "load %s: %s has no site %s", w->w[1], figname, site ? site : "(none)");
+	if (weight && (words_number(mass, UNIT_NONE, &l.mass) < 0 || !(l.mass > 0)))
+		return fail(r, "load %s: mass= a number of kg above 0", w->w[1]);
+	if (weight)
+		l.force[1] = -l.mass * LOAD_GRAVITY;
+	if (pushed && (words_list(force, UNIT_NONE, 3, l.force) < 0 ||
+		       words_list(torque, UNIT_NONE, 3, l.torque) < 0))
+		return fail(r, "load %s: force= and torque= three numbers each", w->w[1]);
+	if (e->load[slot].gen || env_find_load(e, w->w[1]) >= 0)
+		return fail(r, "load %s or its slot appears twice", w->w[1]);
+	uint32_t keep = e->next_gen;
+	int got = env_add_load(e, w->w[1], &l);
+	if (got < 0)
+		return fail(r, "load %s: out of range (at most %g N, %g N m, %g kg)", w->w[1],
+			    ENV_LOAD_FORCE_MAX, ENV_LOAD_TORQUE_MAX, ENV_LOAD_MASS_MAX);
+	if (got != (int)slot) { /* into the recorded slot */
+		e->load[slot] = e->load[got];
+		memset(&e->load[got], 0, sizeof e->load[got]);
+	}
+	e->load[slot].gen = (uint32_t)gen;
+	e->next_gen = keep;
+	return 0;
+}
+
 /* "attach FIG limb= side= kind= object= segment= rel=": a hand or foot held to a figure */
 static int
 read_attach(struct reader *r, struct env *e)
@@ -636,8 +708,9 @@ read_attach(struct reader *r, struct env *e)
 }
 
 /*
- * "view NAME width= height= icons= eye= target= [fovy=] [tint=]": fovy
- * (degrees) and tint (an assessment's colours, off when absent) came later
+ * "view NAME width= height= icons= eye= target= [fovy=] [tint=] [loads=off]":
+ * fovy (degrees), tint (an assessment's colours, off when absent) and loads
+ * (the loads' arrows, on when absent) came later
  */
 static int
 read_view(struct reader *r, struct env *e)
@@ -645,10 +718,13 @@ read_view(struct reader *r, struct env *e)
 	struct words *w = &r->w;
 	unsigned long wd, ht, icons;
 	struct env_view v = { .used = 1, .fovy_deg = ENV_VIEW_FOVY_DEG };
-	const char *fovy = arg(w, 2, "fovy"), *tint = arg(w, 2, "tint");
+	const char *fovy = arg(w, 2, "fovy"), *tint = arg(w, 2, "tint"), *loads = arg(w, 2, "loads");
 	if (tint && (v.tint = env_tint_find(tint)) < 0)
-		return fail(r, "view %s: tint=rula|reba|owas|off", w->w[1]);
-	if (w->n != 7 + (fovy != NULL) + (tint != NULL) || !words_is_name(w->w[1]) ||
+		return fail(r, "view %s: tint=rula|reba|owas|strength|off", w->w[1]);
+	if (loads && strcmp(loads, "on") && strcmp(loads, "off"))
+		return fail(r, "view %s: loads=on|off", w->w[1]);
+	v.loads_hidden = loads && !strcmp(loads, "off");
+	if (w->n != 7 + (fovy != NULL) + (tint != NULL) + (loads != NULL) || !words_is_name(w->w[1]) ||
 	    env_find_view(e, w->w[1]) >= 0 ||
 	    read_uint(arg(w, 2, "width"), 16384, &wd) < 0 || wd < 16 ||
 	    read_uint(arg(w, 2, "height"), 16384, &ht) < 0 || ht < 16 ||
@@ -658,7 +734,7 @@ read_view(struct reader *r, struct env *e)
 	    (fovy && (words_number(fovy, UNIT_NONE, &v.fovy_deg) < 0 ||
 		      v.fovy_deg < ENV_VIEW_FOVY_MIN || v.fovy_deg > ENV_VIEW_FOVY_MAX)))
 		return fail(r, "expected: view NAME width=W height=H icons=0|1 eye=X,Y,Z target=X,Y,Z "
-			       "[fovy=DEG] [tint=rula|reba|owas|off]");
+			       "[fovy=DEG] [tint=rula|reba|owas|strength|off] [loads=on|off]");
 	snprintf(v.name, sizeof v.name, "%s", w->w[1]);
 	v.width = (int)wd;
 	v.height = (int)ht;
@@ -801,6 +877,8 @@ session_read_with(const char *text, size_t len, const char *base_dir, const char
 			ok = read_behave(r, dest);
 		else if (!strcmp(kw, "attach"))
 			ok = read_attach(r, dest);
+		else if (!strcmp(kw, "load"))
+			ok = read_load(r, dest);
 		else if (!strcmp(kw, "assess"))
 			ok = read_assess(r);
 		else if (!strcmp(kw, "end"))

@@ -14,8 +14,9 @@
 #include "pose/env.h"
 
 /* 2: a human's measures and provenance (manikin.h); 3: the family shown; 4: the assessments'
- * settings (set assess), an optional line: older sessions read with the defaults */
-#define SESSION_VERSION 4
+ * settings (set assess), an optional line: older sessions read with the defaults; 5: the
+ * loads on the figures (add load), "load" lines: older sessions have none */
+#define SESSION_VERSION 5
 #define POSTURE_VERSION 2 /* 2: a human's support height */
 
 /* writes the whole environment; 0, or -1 on an I/O error */

@@ -2,12 +2,14 @@
 #include "daemon/tint.h"
 
 #include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "assess/assess_tint.h"
 #include "assess/body_angles.h"
 #include "daemon/assess_live.h"
+#include "daemon/loads_live.h"
 
 /*
  * Traffic-light colours, dark and saturated enough to keep their hue under
@@ -106,6 +108,35 @@ map_segment(const char *name, signed char *region, signed char *side)
 		}
 }
 
+/* the limbs below each strength joint (tint=strength), by side: what its muscles hold up */
+static const struct {
+	const char *limb; /* followed by "_l" or "_r" */
+	enum strength_joint left;
+} limb_joints[] = {
+	{ "hand", STRENGTH_WRIST_L },     { "forearm", STRENGTH_ELBOW_L }, { "upperarm", STRENGTH_SHOULDER_L },
+	{ "thigh", STRENGTH_HIP_L },      { "shank", STRENGTH_KNEE_L },    { "foot", STRENGTH_ANKLE_L },
+	{ "toes", STRENGTH_ANKLE_L },
+};
+_Static_assert(STRENGTH_WRIST_R == STRENGTH_WRIST_L + 1 && STRENGTH_ELBOW_R == STRENGTH_ELBOW_L + 1 &&
+		       STRENGTH_SHOULDER_R == STRENGTH_SHOULDER_L + 1 && STRENGTH_HIP_R == STRENGTH_HIP_L + 1 &&
+		       STRENGTH_KNEE_R == STRENGTH_KNEE_L + 1 && STRENGTH_ANKLE_R == STRENGTH_ANKLE_L + 1,
+	       "a strength joint's right side follows its left");
+
+/* the strength joint just above a human's segment, -1: none (the pelvis, clavicles, head, eyes) */
+static int
+joint_of(const char *name)
+{
+	if (is_vertebra(name)) /* the trunk above L5/S1 */
+		return STRENGTH_L5S1;
+	size_t n = strlen(name);
+	if (n < 3 || name[n - 2] != '_' || (name[n - 1] != 'l' && name[n - 1] != 'r'))
+		return -1;
+	for (size_t i = 0; i < sizeof limb_joints / sizeof limb_joints[0]; i++)
+		if (strlen(limb_joints[i].limb) == n - 2 && !strncmp(name, limb_joints[i].limb, n - 2))
+			return (int)limb_joints[i].left + (name[n - 1] == 'r');
+	return -1;
+}
+
 /* the map of m's segments, made again when the slot holds another model */
 static int
 map_ready(struct tint_map *map, const struct model *m, uint32_t gen)
@@ -120,6 +151,7 @@ map_ready(struct tint_map *map, const struct model *m, uint32_t gen)
 	int trunk = 0, arms = 0;
 	for (int s = 0; s < m->nseg; s++) {
 		map_segment(m->seg_name[s], &map->region[s], &map->side[s]);
+		map->joint[s] = (signed char)joint_of(m->seg_name[s]);
 		trunk += map->region[s] == REGION_TRUNK;
 		arms += map->region[s] == REGION_UPPER_ARM;
 	}
@@ -178,12 +210,55 @@ tint_segments(struct tint_map *map, const struct model *m, uint32_t gen,
 	return 0;
 }
 
+/* a joint's percent capable: its weakest axis that a curve covers; NAN with none */
+static double
+joint_percent(const struct strength_result *sr, int j)
+{
+	double least = NAN;
+	for (int a = 0; a < STRENGTH_NAXES; a++)
+		if (!isnan(sr->percent[j][a]) && (isnan(least) || sr->percent[j][a] < least))
+			least = sr->percent[j][a];
+	return least;
+}
+
+int
+tint_strength_segments(struct tint_map *map, const struct model *m, uint32_t gen,
+		       const struct strength_result *sr, float *dest)
+{
+	if (map_ready(map, m, gen) < 0)
+		return -1;
+	for (int s = 0; s < m->nseg; s++) {
+		const float *c = &m->seg_rgba[4 * s];
+		if (map->joint[s] >= 0) {
+			int band = strength_band(joint_percent(sr, map->joint[s]));
+			c = band < 0 ? tint_unscored_rgba : tint_rgba[band];
+		}
+		memcpy(&dest[4 * s], c, 3 * sizeof *c);
+		dest[4 * s + 3] = m->seg_rgba[4 * s + 3];
+	}
+	return 0;
+}
+
+/* tint=strength: the percent capable under the loads now (loads_live.h) */
+static const float *
+strength_figure(struct tint *t, struct daemon *d, int fig)
+{
+	const struct env_figure *f = &d->env.fig[fig];
+	const struct loads_live_fig *live = loads_live_of(d, fig);
+	if (!live || !live->valid || !live->human || !live->strength)
+		return NULL;
+	return tint_strength_segments(&t->map[fig], f->model, f->gen, &live->sr, t->rgba) < 0 ? NULL
+												 : t->rgba;
+}
+
 const float *
 tint_figure(struct tint *t, struct daemon *d, int fig, int tint)
 {
 	const struct env_figure *f = &d->env.fig[fig];
 	if (tint <= ENV_TINT_OFF || tint >= ENV_TINT_N || !f->gen || !f->is_human)
 		return NULL;
+	if (tint == ENV_TINT_STRENGTH)
+		return strength_figure(t, d, fig);
 	const struct assess_live_fig *live = assess_live_of(d, fig);
 	if (!live || !live->valid)
 		return NULL;
@@ -211,28 +286,33 @@ to_bytes(const float c[4], uint8_t dest[4])
 void
 tint_legend(struct drawlist *dl, int tint)
 {
-	static const char *const names[ENV_TINT_N] = { "", "RULA", "REBA", "OWAS" };
+	static const char *const names[ENV_TINT_N] = { "", "RULA", "REBA", "OWAS", "Strength" };
+	/* strength_band's bands, then no curve */
+	static const char *const percents[ASSESS_NCOLOURS + 1] = { ">=99", "75-99", "25-75", "<25",
+								  "none" };
 	static const uint8_t band[4] = { 20, 24, 32, 190 }, white[4] = { 255, 255, 255, 255 };
 	if (tint <= ENV_TINT_OFF || tint >= ENV_TINT_N)
 		return;
-	enum assess_method method = (enum assess_method)(tint - ENV_TINT_RULA);
+	int strength = tint == ENV_TINT_STRENGTH, ncolours = ASSESS_NCOLOURS + strength;
+	enum assess_method method = (enum assess_method)(strength ? 0 : tint - ENV_TINT_RULA);
 	/* one line: "RULA AL [] 1 [] 2 [] 3 [] 4", a swatch before each label */
 	const int pad = 6, swatch = 12, gap = 4, sep = 10;
-	char title[16];
-	snprintf(title, sizeof title, "%s %s", names[tint], assess_level_word(method));
+	char title[24];
+	snprintf(title, sizeof title, "%s %s", names[tint], strength ? "%" : assess_level_word(method));
 	int w = pad + (int)strlen(title) * VIEW_CHAR_PX;
-	for (int c = 0; c < ASSESS_NCOLOURS; c++)
+	for (int c = 0; c < ncolours; c++)
 		w += sep + swatch + gap +
-		     (int)strlen(assess_colour_levels(method, (enum assess_colour)c)) * VIEW_CHAR_PX;
+		     (int)strlen(strength ? percents[c] : assess_colour_levels(method, (enum assess_colour)c)) *
+			     VIEW_CHAR_PX;
 	w += pad;
 	double top = 4, left = 4, base = top + VIEW_LINE_PX - 5;
 	view_add_rect(dl, left, top, left + w, top + VIEW_LINE_PX, band);
 	view_add_text(dl, left + pad, base, title, white, VIEW_ALIGN_LEFT);
 	double x = left + pad + (double)strlen(title) * VIEW_CHAR_PX;
-	for (int c = 0; c < ASSESS_NCOLOURS; c++) {
-		const char *levels = assess_colour_levels(method, (enum assess_colour)c);
+	for (int c = 0; c < ncolours; c++) {
+		const char *levels = strength ? percents[c] : assess_colour_levels(method, (enum assess_colour)c);
 		uint8_t rgba[4];
-		to_bytes(tint_rgba[c], rgba);
+		to_bytes(c < ASSESS_NCOLOURS ? tint_rgba[c] : tint_unscored_rgba, rgba);
 		x += sep;
 		double sy = top + (VIEW_LINE_PX - swatch) / 2.0;
 		view_add_rect(dl, x, sy, x + swatch, sy + swatch, rgba);

@@ -16,6 +16,19 @@
  * one-sided RULA or REBA, the head in OWAS) is drawn grey; the eyeballs
  * and what no part names keep their own colours.
  *
+ * tint=strength colours the segment just below each strength joint (the
+ * part the joint's muscles hold up) by the joint's percent capable under
+ * the posture and its loads (strength.h), its weakest axis, in
+ * strength_band's bands: green >= 99 % (NIOSH 1981's action limit, men),
+ * yellow 75-99 % (the UAW-GM guideline's 75 %), orange 25-75 %, red < 25 %
+ * (below NIOSH's maximum permissible limit, men):
+ *   wrist  hand_S         elbow  forearm_S      shoulder  upperarm_S
+ *   L5/S1  L5 .. L1, T12 .. T1                  hip       thigh_S
+ *   knee   shank_S        ankle  foot_S, toes_S
+ * A joint no published curve covers (strength.c: NAN on every axis) is
+ * drawn grey; the pelvis, the clavicles, the head and the eyeballs keep
+ * their own colours.
+ *
  * The colours are made in fixed arrays: nothing allocates in the frame.
  */
 #ifndef POSTURE_DAEMON_TINT_H
@@ -24,6 +37,7 @@
 #include <stdint.h>
 
 #include "assess/assess.h"
+#include "assess/strength.h"
 #include "daemon/daemon.h"
 #include "draw/view.h"
 
@@ -44,6 +58,7 @@ struct tint_map {
 	int ok; /* 0: not a human's segments (drawn in its own colours) */
 	signed char region[TINT_MAX_SEG]; /* enum tint_region, -1: none */
 	signed char side[TINT_MAX_SEG];   /* enum body_side of an arm's segment, else -1 */
+	signed char joint[TINT_MAX_SEG];  /* enum strength_joint just above it, -1: none */
 };
 
 struct tint {
@@ -69,9 +84,17 @@ int tint_segments(struct tint_map *map, const struct model *m, uint32_t gen,
 		  const struct assess_result *const res_side[2], float *dest);
 
 /*
+ * The segment colours of model m for the percent capable of sr (tint=strength,
+ * above), into dest (4 floats a segment): 0, or -1 when m is not a human's.
+ */
+int tint_strength_segments(struct tint_map *map, const struct model *m, uint32_t gen,
+			   const struct strength_result *sr, float *dest);
+
+/*
  * The key of tint's colours in the picture's top left corner: the
  * method's name and its four colours, each labelled with the action
- * levels it stands for. Nothing for tint off.
+ * levels it stands for (strength: the percents of its bands, and grey for
+ * no curve). Nothing for tint off.
  */
 void tint_legend(struct drawlist *dl, int tint);
 

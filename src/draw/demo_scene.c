@@ -152,7 +152,7 @@ demo_scene_icons(struct drawlist *dl, const struct demo_scene *sc, int frame)
 	view_add_orientation_fans(dl, hand, &goal, 0.15);
 	if (sc->ik)
 		view_add_goals(dl, sc->ik, h, s);
-	view_add_balance(dl, h, s);
+	view_add_balance(dl, h, s, NULL);
 	static const char status[] = "move end effector: hand_r.palm  x 0.213  y 1.024  z 0.305";
 	view_add_status(dl, status, "left: x   middle: y   right: z   CONTROL rotates, SHIFT local axes",
 			(int)sizeof status - 1);

@@ -339,9 +339,34 @@ void view_add_goals(struct drawlist *dl, const struct ik *ik, const struct model
  * floor), the balance line between the feet's balance sites, the centre of
  * mass at its height with a plumb line, and the balance point (its
  * projection to the floor), green inside the support polygon and red
- * outside. Returns 0, or -1 when the figure has no feet.
+ * outside. com: the centre of mass balanced, the figure's with the weights
+ * it carries (load_balance_com); NULL: its own. Returns 0, or -1 when the
+ * figure has no feet.
  */
-int view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s);
+int view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s,
+		     const double com[3]);
+
+/* an external load's arrow: this long per newton of force, within these lengths (m) */
+#define VIEW_LOAD_M_PER_N 0.002 /* 2 mm a newton: a 15 kg weight's 147 N, 29 cm */
+#define VIEW_LOAD_LEN_MIN 0.05  /* so that a small force still shows */
+#define VIEW_LOAD_LEN_MAX 1.5   /* so that a large one stays in the picture (its label tells) */
+#define VIEW_LOAD_HEAD 0.06     /* an arrow's head's length (m), at most 30 % of the arrow */
+#define VIEW_LOAD_RING 0.07     /* a torque's ring's radius (m), whatever its size */
+
+/* the arrow's length (m) for a force of this many newtons */
+double view_load_length(double newtons);
+
+/*
+ * An external load acting at point p (world): its force (NULL or zero:
+ * none) as an arrow from p the way it pulls, view_load_length long (a
+ * weight's points down), its head turned to the camera; its torque (NULL or
+ * zero: none) as a ring about the torque's axis at p with an arrowhead
+ * turning the right-hand way; label (NULL: none) beyond the arrow's tip. In
+ * the loads' magenta, flat and seen through the body faintly, as the other
+ * icons (§3.3.2).
+ */
+void view_add_load(struct drawlist *dl, const double p[3], const double force[3],
+		   const double torque[3], const char *label);
 
 /*
  * The status / edit line at the bottom of the picture and the message line

@@ -2,7 +2,7 @@
  * view_icons.c - the icons of the dissertation as draw-list lines and
  * triangles: the manipulation frame, the translation arrow, the rotation
  * wheel with its limit sectors (§3.8.1), rotation fans (Figure 4.1), goal
- * icons, and balance (§5.4.2.1). No GL here.
+ * icons, balance (§5.4.2.1), and the loads on the body as arrows. No GL here.
  */
 #include <math.h>
 #include <stdio.h>
@@ -275,9 +275,9 @@ view_add_goals(struct drawlist *dl, const struct ik *ik, const struct model *m,
 			xform_mul(&s->site_xf[d->goal_site], &d->goal_xf, &g);
 		else
 			g = d->goal_xf;
-		if (d->com_effector) {
+		if (d->com_effector) { /* with the weights the figure carries */
 			xform_identity(&e);
-			memcpy(e.p, s->com, sizeof e.p);
+			ik_com(ik, s, e.p);
 		} else {
 			xform_mul(&s->site_xf[d->effector_site], &d->effector_offset, &e);
 		}
@@ -343,13 +343,15 @@ view_add_goals(struct drawlist *dl, const struct ik *ik, const struct model *m,
 /* ---- balance ------------------------------------------------------------- */
 
 int
-view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s)
+view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s,
+		 const double com_held[3])
 {
 	static const uint8_t c_poly[4] = { 60, 120, 200, 255 }, c_line[4] = { 30, 60, 160, 255 };
 	uint8_t tc[4];
 	struct balance bal; /* the support polygon and balance line, as balance.c measures them */
-	if (balance_measure(m, s, BALANCE_CONTACT, &bal) < 0)
+	if (balance_measure_com(m, s, BALANCE_CONTACT, 0, com_held ? com_held : s->com, &bal) < 0)
 		return -1;
+	const double *com = bal.com;
 	int nh = bal.npoly;
 	double (*hull)[2] = bal.poly;
 	const double y = 0.002; /* just above the floor */
@@ -378,21 +380,21 @@ view_add_balance(struct drawlist *dl, const struct model *m, const struct state 
 
 	/* the centre of mass: a plumb line, a ring at its height and the balance point */
 	const uint8_t *cb = bal.margin > 0 ? C_GREEN : C_RED;
-	double bp[3] = { s->com[0], y, s->com[2] }, up[3] = { 0, 1, 0 }, ux[3] = { 1, 0, 0 };
+	double bp[3] = { com[0], y, com[2] }, up[3] = { 0, 1, 0 }, ux[3] = { 1, 0, 0 };
 	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, 1.5f, 1);
 	int dashes = 24;
 	for (int i = 0; i < dashes; i += 2) {
-		double a[3] = { bp[0], y + s->com[1] * i / dashes, bp[2] };
-		double b[3] = { bp[0], y + s->com[1] * (i + 1) / dashes, bp[2] };
+		double a[3] = { bp[0], y + com[1] * i / dashes, bp[2] };
+		double b[3] = { bp[0], y + com[1] * (i + 1) / dashes, bp[2] };
 		view_line(dl, a, b, with_alpha(C_BLACK, 150, tc));
 	}
 	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, THICK_WIDTH, 1);
-	view_circle(dl, s->com, up, ux, 0.045, 32, C_BLACK);
+	view_circle(dl, com, up, ux, 0.045, 32, C_BLACK);
 	double e0[3], e1[3];
 	for (int k = 0; k < 3; k += 2) {
 		double d[3] = { k == 0, 0, k == 2 };
-		v_madd(s->com, -0.06, d, e0);
-		v_madd(s->com, 0.06, d, e1);
+		v_madd(com, -0.06, d, e0);
+		v_madd(com, 0.06, d, e1);
 		view_line(dl, e0, e1, C_BLACK);
 	}
 	view_circle(dl, bp, up, ux, 0.035, 32, cb);
@@ -405,3 +407,83 @@ view_add_balance(struct drawlist *dl, const struct model *m, const struct state 
 	return 0;
 }
 
+
+/* ---- loads ----------------------------------------------------------------- */
+
+static const uint8_t C_LOAD[4] = { 200, 40, 180, 255 };
+
+double
+view_load_length(double newtons)
+{
+	double len = VIEW_LOAD_M_PER_N * newtons;
+	return len < VIEW_LOAD_LEN_MIN ? VIEW_LOAD_LEN_MIN : len > VIEW_LOAD_LEN_MAX ? VIEW_LOAD_LEN_MAX : len;
+}
+
+/* a torque: a ring about its axis at p, turning the right-hand way, with an arrowhead */
+static void
+torque_ring(struct drawlist *dl, const double p[3], const double axis[3])
+{
+	const double r = VIEW_LOAD_RING, sweep = 1.6 * M_PI;
+	double u[3], a0[3], a1[3];
+	v_perp(axis, u);
+	view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, THICK_WIDTH, 1);
+	int n = 40;
+	for (int i = 0; i < n; i++) {
+		turn(axis, u, sweep * i / n, a0);
+		turn(axis, u, sweep * (i + 1) / n, a1);
+		double p0[3], p1[3];
+		v_madd(p, r, a0, p0);
+		v_madd(p, r, a1, p1);
+		view_line(dl, p0, p1, C_LOAD);
+	}
+	/* the head at the ring's end: two barbs back along the way it turns */
+	double end[3], dir[3], out[3], tip[3], barb[3];
+	turn(axis, u, sweep, out);
+	v_madd(p, r, out, tip);
+	turn(axis, u, sweep + M_PI / 2, dir); /* the tangent at the end */
+	for (int s = -1; s <= 1; s += 2) {
+		for (int k = 0; k < 3; k++)
+			barb[k] = -dir[k] + 0.6 * s * out[k];
+		v_madd(tip, 0.35 * r, barb, end);
+		view_line(dl, tip, end, C_LOAD);
+	}
+}
+
+void
+view_add_load(struct drawlist *dl, const double p[3], const double force[3], const double torque[3],
+	      const char *label)
+{
+	double d[3] = { 0, 0, 0 }, tip[3];
+	memcpy(tip, p, sizeof tip);
+	double f = force ? v_unit(force, d) : 0;
+	if (f > 0) {
+		/* flat, as the other icons: a thick shaft from the point the load acts at, the
+		 * way it pulls, and a head facing the camera */
+		double len = view_load_length(f), head = fmin(0.3 * len, VIEW_LOAD_HEAD);
+		double base[3], side[3], to_cam[3], a[3], b[3];
+		v_madd(p, len, d, tip);
+		v_madd(p, len - head, d, base);
+		v_madd(dl->cam.xf.p, -1, base, to_cam);
+		v_cross(d, to_cam, side);
+		if (v_unit(side, side) < 1e-9) /* end on to the camera */
+			v_perp(d, side);
+		view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, THICK_WIDTH, 1);
+		view_line(dl, p, base, C_LOAD);
+		view_batch_begin(dl, VIEW_TRIANGLES, VIEW_WORLD, 1, 1);
+		v_madd(base, 0.4 * head, side, a);
+		v_madd(base, -0.4 * head, side, b);
+		view_triangle(dl, tip, a, b, C_LOAD);
+	}
+	double axis[3];
+	if (torque && v_unit(torque, axis) > 0)
+		torque_ring(dl, p, axis);
+	if (label && label[0]) {
+		static const double up[3] = { 0, 1, 0 };
+		double at[3];
+		if (f > 0)
+			v_madd(tip, 0.04, d, at);
+		else
+			v_madd(p, VIEW_LOAD_RING + 0.04, up, at);
+		view_world_label(dl, at, label, C_LOAD);
+	}
+}

@@ -98,6 +98,10 @@ static const struct group_key group_table[] = {
 	{ "settle", "", G_CONSTRAINTS },
 
 	{ "assess", NULL, G_ERGONOMICS },
+	{ "add", "load", G_ERGONOMICS },
+	{ "list", "loads", G_ERGONOMICS },
+	{ "delete", "load", G_ERGONOMICS },
+	{ "analyze", "loads", G_ERGONOMICS },
 	{ "get", "angles", G_ERGONOMICS },
 	{ "set", "assess", G_ERGONOMICS },
 	{ "get", "assess", G_ERGONOMICS },

@@ -174,6 +174,14 @@ carry(const struct model *m, struct state *s, const struct xform *now, const str
 	struct xform delta, root;
 	xform_mul_inv(goal, now, &delta);
 	xform_mul(&delta, &s->root_xf, &root);
+	/* a rotation again: the inverse above is the transpose, so a root off by e comes out
+	 * off by 2e, and a figure carried frame after frame would double it each time */
+	double q[4];
+	mathx_mat_to_quat(root.r, q);
+	double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+	for (int i = 0; i < 4; i++)
+		q[i] /= n;
+	mathx_quat_to_mat(q, root.r);
 	s->root_xf = root;
 	kin_update(m, s);
 	return 1;

@@ -189,6 +189,13 @@ int
 balance_measure_feet(const struct model *m, const struct state *s, double contact_height,
 		     unsigned tiptoe, struct balance *dest)
 {
+	return balance_measure_com(m, s, contact_height, tiptoe, s->com, dest);
+}
+
+int
+balance_measure_com(const struct model *m, const struct state *s, double contact_height,
+		    unsigned tiptoe, const double com[3], struct balance *dest)
+{
 	static const char *const feet[4] = { "foot_l", "foot_r", "toes_l", "toes_r" };
 	int bl = model_find_site(m, "foot_l.balance"), br = model_find_site(m, "foot_r.balance");
 	if (bl < 0 || br < 0)
@@ -215,7 +222,8 @@ balance_measure_feet(const struct model *m, const struct state *s, double contac
 	memcpy(dest->poly, hull, sizeof *hull * (size_t)dest->npoly);
 	foot_ref(m, s, bl, "l", tiptoe & 1 ? contact_height : 0, dest->ref_l);
 	foot_ref(m, s, br, "r", tiptoe & 2 ? contact_height : 0, dest->ref_r);
-	dest->point[0] = s->com[0], dest->point[1] = s->com[2];
+	memmove(dest->com, com, sizeof dest->com);
+	dest->point[0] = com[0], dest->point[1] = com[2];
 	/* forward: across the line from left to right, turned as the feet face (up x line) */
 	double d[2] = { dest->ref_r[0] - dest->ref_l[0], dest->ref_r[1] - dest->ref_l[1] };
 	if (dot2(d, d) < 1e-18) { /* feet together: forward is where the left foot points */

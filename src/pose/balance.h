@@ -22,6 +22,8 @@ struct balance {
 	double poly[BALANCE_POLY_MAX][2];   /* support polygon, counter-clockwise seen from above */
 	double ref_l[2], ref_r[2];          /* the balance line's ends: left and right foot */
 	double forward[2];                  /* unit, across the balance line, the way the feet face */
+	double com[3];                      /* the centre of mass balanced: the figure's, with the
+					     * weights it carries (point_mass.h) */
 	double point[2];                    /* the balance point: the centre of mass on the floor */
 	double x;                           /* along the line: 0 at the left foot, 1 at the right */
 	double z;                           /* 0 on the line, 1 at the front edge, -1 at the back */
@@ -44,6 +46,12 @@ int balance_measure(const struct model *m, const struct state *s, double contact
  */
 int balance_measure_feet(const struct model *m, const struct state *s, double contact_height,
 			 unsigned tiptoe, struct balance *dest);
+/*
+ * The same, balancing the centre of mass com rather than the figure's own
+ * (s->com): the figure's with the weights it carries (point_mass_com).
+ */
+int balance_measure_com(const struct model *m, const struct state *s, double contact_height,
+			unsigned tiptoe, const double com[3], struct balance *dest);
 /*
  * 1 when some geom of segment seg (its bounding box, as the support polygon
  * takes it) comes within contact_height of the floor; 0 for seg < 0

@@ -62,10 +62,57 @@ measure(struct behave *b, const struct model *m, const struct state *s)
 	for (int k = 0; k < 2; k++)
 		if (b->p.heel[k] == HEEL_ALLOW_RISE && !b->p.seated && !b->step.active)
 			tiptoe |= 1u << k;
-	int rc = balance_measure_feet(m, s, BALANCE_CONTACT, tiptoe, &b->bal);
+	double com[3];
+	behave_com(b, s, com);
+	int rc = balance_measure_com(m, s, BALANCE_CONTACT, tiptoe, com, &b->bal);
 	/* the truth follows every measure (a restored figure too); the alert's edge is the solve's */
 	b->stability_low = b->bal.margin < b->p.stability_threshold; /* no support: a margin of -1e9 */
 	return rc;
+}
+
+void
+behave_com(const struct behave *b, const struct state *s, double dest[3])
+{
+	point_mass_com(s, b->mass, b->nmass, dest);
+}
+
+/* two lists of masses the same, field by field (their padding is no part of them) */
+static int
+same_masses(const struct point_mass *a, int na, const struct point_mass *c, int nc)
+{
+	if (na != nc)
+		return 0;
+	for (int i = 0; i < na; i++)
+		if (a[i].seg != c[i].seg || a[i].mass != c[i].mass || a[i].local[0] != c[i].local[0] ||
+		    a[i].local[1] != c[i].local[1] || a[i].local[2] != c[i].local[2])
+			return 0;
+	return 1;
+}
+
+int
+behave_set_masses(struct behave *b, const struct model *m, const struct state *s,
+		  const struct point_mass *pm, int n)
+{
+	if (point_mass_check(m, pm, n) < 0)
+		return -1;
+	if (!same_masses(b->mass, b->nmass, pm, n)) {
+		double before[3], after[3];
+		behave_com(b, s, before);
+		if (n > 0)
+			memcpy(b->mass, pm, sizeof *pm * (size_t)n);
+		b->nmass = n;
+		behave_com(b, s, after);
+		/* the body stays where it stands: what is held moves with the centre of mass's jump */
+		if (!b->masses_adopt) {
+			b->elevation += after[1] - before[1];
+			for (int i = 0; i < 3; i++)
+				b->com_fixed[i] += after[i] - before[i];
+		} else { /* restored: measured again with its weights, telling no alert */
+			behave_measure(b, m, s);
+		}
+	}
+	b->masses_adopt = 0;
+	return 0;
 }
 
 void
@@ -350,8 +397,10 @@ behave_set_params(struct behave *b, const struct model *m, struct state *s, stru
 	aim_def(b->s_head, b->j_neck, p->head_point, p->fixate_head, &d);
 	ik_set(ik, m, b->c_head, &d);
 	d = *ik_get(ik, b->c_balance);
+	double com[3];
+	behave_com(b, s, com);
 	if (p->hold_elevation && d.pos != IK_POINT)
-		b->elevation = s->com[1];
+		b->elevation = com[1];
 	balance_goal(b, &d);
 	d.enabled = !p->seated; /* the seat bears the weight */
 	ik_set(ik, m, b->c_balance, &d);
@@ -359,7 +408,7 @@ behave_set_params(struct behave *b, const struct model *m, struct state *s, stru
 		set_root(b, m, s, ik, BALANCE_ROOT_LOWER_TORSO);
 	stance_limit_springs(ik, m, p->spring_angle, STANCE_SPRING_WEIGHT);
 	if (p->root_through_com)
-		memcpy(b->com_fixed, s->com, sizeof b->com_fixed);
+		memcpy(b->com_fixed, com, sizeof b->com_fixed);
 }
 
 static void step_start(struct behave *b, struct state *s, struct ik *ik, int side,
@@ -433,7 +482,7 @@ step_trigger(struct behave *b, const struct model *m, struct state *s, struct ik
 		return;
 	/* going down into a squat is no loss of balance: the feet stay (§5.5.2) */
 	double standing = 0.75 * b->leg_length;
-	if (s->com[1] < standing || (b->p.hold_elevation && b->elevation < standing))
+	if (s->com[1] < standing || /* the body's own height, as for rooting */ (b->p.hold_elevation && b->elevation < standing))
 		return;
 	/* to the front or back the foot bearing less weight steps; to the side
 	 * only the support foot, the one the balance point went past, can */
@@ -496,7 +545,7 @@ behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik
 	measure(b, m, s);
 	/* automatic rooting (§5.4.2.4), never in the middle of a step */
 	if (b->p.auto_root && !b->step.active && !b->p.root_through_com && !b->p.seated) {
-		double com_h = s->com[1];
+		double com_h = s->com[1]; /* the body's own: how low it is, whatever it carries */
 		set_root(b, m, s, ik, balance_choose_root(&b->bal, com_h, b->leg_length, b->root));
 	}
 	/* active behaviours: advance a step under way, or start one */
@@ -521,11 +570,14 @@ behave_frame(struct behave *b, const struct model *m, struct state *s, struct ik
 		mathx_mat3_mul(head, b->pelvis_turn, g.r);
 		ik_set_goal(ik, b->c_pelvis, &g);
 	}
+	ik_set_point_masses(ik, m, b->mass, b->nmass); /* checked when set */
 	struct ik_result r = ik_solve(ik, m, s, opt, clock);
 	/* root through the centre of mass (§D.2.5): the whole figure slides back under it */
 	if (b->p.root_through_com) {
+		double com[3];
+		behave_com(b, s, com);
 		for (int i = 0; i < 3; i++)
-			s->root_xf.p[i] += b->com_fixed[i] - s->com[i];
+			s->root_xf.p[i] += b->com_fixed[i] - com[i];
 		kin_update(m, s);
 	}
 	measure(b, m, s);
@@ -608,7 +660,9 @@ behave_move_com(struct behave *b, const struct model *m, struct state *s, struct
 			p.hold_elevation = 1;
 			behave_set_params(b, m, s, ik, &p);
 		}
-		b->elevation = s->com[1] + dy;
+		double com[3];
+		behave_com(b, s, com);
+		b->elevation = com[1] + dy;
 	}
 }
 

@@ -20,6 +20,7 @@
 
 #include "pose/balance.h"
 #include "pose/ik.h"
+#include "pose/point_mass.h"
 #include "pose/spine.h"
 
 enum behave_side {
@@ -114,6 +115,10 @@ struct behave {
 	int stability_changed; /* ... and was not when the last alert was told (at the solve) */
 	int alert_low;         /* stability_low as the last solve told it */
 	int detached; /* def[] holds the constraints; they are not (yet) in the solver */
+	/* the weights carried (behave_set_masses): not packed, the environment's loads */
+	struct point_mass mass[POINT_MASS_MAX];
+	int nmass;
+	int masses_adopt; /* unpacked: the next masses are those it was packed with */
 };
 
 /*
@@ -143,6 +148,25 @@ struct ik_result behave_frame(struct behave *b, const struct model *m, struct st
  */
 void behave_keep_constraints(struct behave *b, const struct ik *ik);
 int behave_restore_constraints(struct behave *b, const struct model *m, struct ik *ik);
+
+/*
+ * The weights the figure carries (point_mass.h), set before each frame:
+ * balance (its constraint, the balance point and parameters, the margin and
+ * the stability alert, stepping) and root through the centre of mass hold
+ * the centre of mass of the figure with them, so a weight held out in front
+ * moves the hips back. What is held where the figure stands (a held
+ * elevation, the fixed centre of mass) moves with the jump a change of
+ * weights makes, so the body does not rise or slide for it; the first
+ * masses after behave_unpack are taken as those the state was packed with
+ * (and balance is measured again with them, as behave_measure).
+ * The rooting and squat tests read the body's own height (they tell a
+ * posture). Returns 0, or -1 for masses the figure cannot carry (nothing
+ * changes). s needs kin_com.
+ */
+int behave_set_masses(struct behave *b, const struct model *m, const struct state *s,
+		      const struct point_mass *pm, int n);
+/* the centre of mass balance holds: the figure's with its weights (needs kin_com) */
+void behave_com(const struct behave *b, const struct state *s, double dest[3]);
 
 /* the behaviour's constraint k (0..BEHAVE_NCON-1) as it stands */
 const struct ik_constraint_def *behave_def(const struct behave *b, const struct ik *ik, int k);

@@ -155,6 +155,11 @@ behave_unpack(struct behave *b, const struct model *m, const double *v, int nv)
 	if (bad || fresh.step.frame > fresh.step.frames || (fresh.step.active && !fresh.step.frames))
 		return -1;
 	memcpy(fresh.def, b->def, sizeof fresh.def);
+	/* the weights are the environment's, not packed: they stay, and the next ones set
+	 * are taken as those the numbers were measured with */
+	memcpy(fresh.mass, b->mass, sizeof fresh.mass);
+	fresh.nmass = b->nmass;
+	fresh.masses_adopt = 1;
 	*b = fresh;
 	b->detached = 1;
 	for (int k = 0; k < BEHAVE_NCON; k++)

@@ -32,6 +32,7 @@ env_clear(struct env *e)
 		if (e->fig[i].gen)
 			free_figure(&e->fig[i]);
 	memset(e->con, 0, sizeof e->con);
+	memset(e->load, 0, sizeof e->load);
 	memset(e->view, 0, sizeof e->view);
 	memset(e->att, 0, sizeof e->att);
 	memset(&e->show, 0, sizeof e->show);
@@ -103,6 +104,9 @@ env_remove_figure(struct env *e, int slot)
 	for (int i = 0; i < ENV_MAX_CONSTRAINTS; i++)
 		if (e->con[i].gen && e->con[i].fig == slot)
 			memset(&e->con[i], 0, sizeof e->con[i]);
+	for (int i = 0; i < ENV_MAX_LOADS; i++)
+		if (e->load[i].gen && e->load[i].fig == slot)
+			memset(&e->load[i], 0, sizeof e->load[i]);
 	for (int i = 0; i < ENV_MAX_ATTACH; i++) /* what held it or it held lets go */
 		if (e->att[i].used && (e->att[i].fig == slot || e->att[i].obj == slot))
 			memset(&e->att[i], 0, sizeof e->att[i]);
@@ -147,6 +151,30 @@ env_find_constraint(const struct env *e, const char *ref)
 	return parse_id(ref, 'c', ENV_MAX_CONSTRAINTS, &e->con[0].gen, sizeof e->con[0]);
 }
 
+static int
+load_named(const struct env *e, const char *name)
+{
+	for (int i = 0; i < ENV_MAX_LOADS; i++)
+		if (e->load[i].gen && !strcmp(e->load[i].name, name))
+			return i;
+	return -1;
+}
+
+int
+env_find_load(const struct env *e, const char *ref)
+{
+	int slot = load_named(e, ref);
+	if (slot >= 0)
+		return slot;
+	return parse_id(ref, 'l', ENV_MAX_LOADS, &e->load[0].gen, sizeof e->load[0]);
+}
+
+void
+env_load_id(const struct env *e, int slot, char dest[32])
+{
+	snprintf(dest, 32, "l%d.%u", slot, e->load[slot].gen);
+}
+
 void
 env_figure_id(const struct env *e, int slot, char dest[32])
 {
@@ -185,6 +213,64 @@ env_add_constraint(struct env *e, int fig, const char *name, const struct ik_con
 		return i;
 	}
 	return ENV_FULL;
+}
+
+static double
+norm3(const double v[3])
+{
+	return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+/* def a load this environment can hold: its figure and site there, its numbers finite and sane */
+static int
+load_valid(const struct env *e, const struct env_load *d)
+{
+	if (d->fig < 0 || d->fig >= ENV_MAX_FIGURES || !e->fig[d->fig].gen || d->site < 0 ||
+	    d->site >= e->fig[d->fig].model->nsite)
+		return 0;
+	for (int k = 0; k < 3; k++)
+		if (!isfinite(d->force[k]) || !isfinite(d->torque[k]))
+			return 0;
+	if (!(norm3(d->force) <= ENV_LOAD_FORCE_MAX) || !(norm3(d->torque) <= ENV_LOAD_TORQUE_MAX) ||
+	    !(d->mass >= 0 && d->mass <= ENV_LOAD_MASS_MAX))
+		return 0;
+	/* a weight is its mass's pull down and nothing else */
+	return d->mass == 0 || (d->force[0] == 0 && d->force[1] == -d->mass * LOAD_GRAVITY &&
+				d->force[2] == 0 && norm3(d->torque) == 0);
+}
+
+int
+env_add_load(struct env *e, const char *name, const struct env_load *def)
+{
+	char auto_name[MODEL_NAME_MAX];
+	if (!name) {
+		for (int k = 1;; k++) {
+			snprintf(auto_name, sizeof auto_name, "l%d", k);
+			if (load_named(e, auto_name) < 0)
+				break;
+		}
+		name = auto_name;
+	}
+	if (!load_valid(e, def))
+		return ENV_BAD;
+	if (load_named(e, name) >= 0)
+		return ENV_EXISTS;
+	for (int i = 0; i < ENV_MAX_LOADS; i++) {
+		struct env_load *l = &e->load[i];
+		if (l->gen)
+			continue;
+		*l = *def;
+		l->gen = e->next_gen++;
+		snprintf(l->name, sizeof l->name, "%s", name);
+		return i;
+	}
+	return ENV_FULL;
+}
+
+void
+env_remove_load(struct env *e, int slot)
+{
+	memset(&e->load[slot], 0, sizeof e->load[slot]);
 }
 
 void
@@ -257,7 +343,7 @@ env_find_view(const struct env *e, const char *name)
 	return -1;
 }
 
-static const char *const tint_names[ENV_TINT_N] = { "off", "rula", "reba", "owas" };
+static const char *const tint_names[ENV_TINT_N] = { "off", "rula", "reba", "owas", "strength" };
 
 const char *
 env_tint_str(int tint)

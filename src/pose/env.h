@@ -15,11 +15,16 @@
 #include "figure/human.h"
 #include "figure/population.h"
 #include "pose/ik.h"
+#include "pose/load.h"
 #include "figure/model.h"
 #include "figure/state.h"
 
 #define ENV_MAX_FIGURES 40 /* a family of both sexes, 1 + 16 each, and a few more */
 #define ENV_MAX_CONSTRAINTS 64
+#define ENV_MAX_LOADS 64
+#define ENV_LOAD_FORCE_MAX 1e5  /* N: a load's force at most (10 tonnes' weight; a body gives way far below) */
+#define ENV_LOAD_TORQUE_MAX 1e4 /* N m: a load's torque at most */
+#define ENV_LOAD_MASS_MAX 1000.0 /* kg: a weight at most (the assessments' load limit too) */
 #define ENV_PATH_MAX 256
 #define ENV_MAX_VIEWS 8
 #define ENV_VIEW_FOVY_DEG 40.0 /* a view's vertical field of view unless it asks for another */
@@ -74,6 +79,22 @@ struct env_constraint {
 };
 
 /*
+ * An external load on a figure (add load): a force and a torque in the
+ * world frame at one of its sites, or a weight (a mass hanging there, its
+ * force mass x LOAD_GRAVITY down). What the figure feels this frame,
+ * with what its hands carry, is load_set.h's.
+ */
+struct env_load {
+	uint32_t gen; /* 0: a free slot */
+	char name[MODEL_NAME_MAX];
+	int fig;          /* figure slot */
+	int site;         /* the site it acts at; its segment carries it */
+	double force[3];  /* N, world frame (y up); a weight's: (0, -mass g, 0) */
+	double torque[3]; /* N m, world frame; a weight's: 0 */
+	double mass;      /* kg: a weight; 0: a force */
+};
+
+/*
  * A limb of a behaving human held to another figure (Table D.4, §D.1.1):
  * ATTACH_GRAB, the hand grabbed the object, which follows the hand (rel:
  * the object's base segment in the palm's frame); ATTACH_LOCAL, the hand
@@ -118,14 +139,16 @@ struct env_show {
 
 /*
  * What a view's tint colours the humans' body parts by: nothing (their own
- * colours), or a posture assessment's part scores (the daemon's
- * assessment; this layer only keeps the choice).
+ * colours), a posture assessment's part scores, or the percent of the
+ * population strong enough at each joint under the loads (the daemon's
+ * analyses; this layer only keeps the choice).
  */
 enum env_tint {
 	ENV_TINT_OFF,
 	ENV_TINT_RULA,
 	ENV_TINT_REBA,
 	ENV_TINT_OWAS,
+	ENV_TINT_STRENGTH,
 	ENV_TINT_N,
 };
 
@@ -138,11 +161,13 @@ struct env_view {
 	double fovy_deg; /* vertical field of view, degrees, kept as given so it reads back exactly */
 	int icons; /* 1: the manipulation icons, balance and goals */
 	int tint;  /* enum env_tint: the humans' parts coloured by an assessment's part scores */
+	int loads_hidden; /* 1: the loads' arrows not drawn (set view VIEW loads=off); 0 drawn */
 };
 
 struct env {
 	struct env_figure fig[ENV_MAX_FIGURES];
 	struct env_constraint con[ENV_MAX_CONSTRAINTS];
+	struct env_load load[ENV_MAX_LOADS];
 	struct env_view view[ENV_MAX_VIEWS];
 	/* the kiosk's screen: the views tiled on it, in order (slots); 0: the first view alone */
 	int layout[ENV_MAX_VIEWS];
@@ -162,16 +187,19 @@ void env_clear(struct env *e);
  */
 int env_add_figure(struct env *e, struct model *model, const char *name, int is_human,
 		   const struct human_def *human, const char *path);
-/* removes a figure and its constraints */
+/* removes a figure, its constraints, its loads and what held it or it held */
 void env_remove_figure(struct env *e, int slot);
 
 /* ref is a name or an id "f<slot>.<gen>"; returns the slot or an env_err */
 int env_find_figure(const struct env *e, const char *ref);
 int env_find_constraint(const struct env *e, const char *ref);
+/* a load by name or id "l<slot>.<gen>": the slot or an env_err */
+int env_find_load(const struct env *e, const char *ref);
 
 /* writes the id of a slot ("f3.12", "c0.7") into dest */
 void env_figure_id(const struct env *e, int slot, char dest[32]);
 void env_constraint_id(const struct env *e, int slot, char dest[32]);
+void env_load_id(const struct env *e, int slot, char dest[32]);
 
 /* adds a constraint (name NULL: c1, c2, ...); returns the slot or an env_err */
 int env_add_constraint(struct env *e, int fig, const char *name,
@@ -179,6 +207,15 @@ int env_add_constraint(struct env *e, int fig, const char *name,
 void env_remove_constraint(struct env *e, int slot);
 /* replaces a constraint's definition (goal moves, switching on and off) */
 void env_set_constraint(struct env *e, int slot, const struct ik_constraint_def *def);
+
+/*
+ * Adds a load (name NULL: l1, l2, ...): def's fig, site, force, torque and
+ * mass, checked (a figure there, a site of it, finite values, a weight's
+ * force its mass's). Returns the slot, or ENV_EXISTS (the name is taken),
+ * ENV_FULL, ENV_BAD (def is not a load of this environment).
+ */
+int env_add_load(struct env *e, const char *name, const struct env_load *def);
+void env_remove_load(struct env *e, int slot);
 
 /* refills a figure's solver from its constraints when they changed */
 void env_sync_solver(struct env *e, int fig);
@@ -188,7 +225,7 @@ int env_solver_index(const struct env *e, int slot);
 
 /* a view by name, or -1 */
 int env_find_view(const struct env *e, const char *name);
-/* a tint's name ("off", "rula", "reba", "owas"; "?" out of range), and back (-1: none such) */
+/* a tint's name ("off", "rula", "reba", "owas", "strength"; "?" out of range), and back (-1: none such) */
 const char *env_tint_str(int tint);
 int env_tint_find(const char *name);
 

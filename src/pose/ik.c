@@ -46,6 +46,10 @@ struct ik {
 	double *H2; /* ndof^2: Cholesky factor */
 	unsigned char *pin; /* ndof: variable pinned at a bound when the metric was made */
 	int *free_idx;      /* ndof */
+
+	/* weights the figure carries: part of the centre of mass its com effectors hold */
+	struct point_mass mass[POINT_MASS_MAX];
+	int nmass;
 };
 
 struct ik_options
@@ -612,17 +616,48 @@ moving_segments(const struct ik *ik, const struct model *m, const struct state *
 	return n;
 }
 
-/* the centre of mass rides on its site during a round (§4.5.2) */
+int
+ik_set_point_masses(struct ik *ik, const struct model *m, const struct point_mass *pm, int n)
+{
+	if (point_mass_check(m, pm, n) < 0)
+		return -1;
+	if (n > 0)
+		memcpy(ik->mass, pm, sizeof *pm * (size_t)n);
+	ik->nmass = n;
+	return 0;
+}
+
+int
+ik_point_masses(const struct ik *ik, const struct point_mass **pm)
+{
+	*pm = ik->mass;
+	return ik->nmass;
+}
+
+void
+ik_com(const struct ik *ik, const struct state *s, double dest[3])
+{
+	point_mass_com(s, ik->mass, ik->nmass, dest);
+}
+
+/*
+ * The centre of mass, with the weights carried, rides on its site during a
+ * round (§4.5.2): the round's energy and its derivatives move it rigidly
+ * with the site, and the next round measures it again. A weight joins it as
+ * any segment's mass does.
+ */
 static void
 attach_com(struct ik *ik, const struct state *s)
 {
+	double com[3];
+	ik_com(ik, s, com);
 	for (int ci = 0; ci < ik->e.n; ci++) {
 		struct ik_con *c = &ik->e.con[ci];
 		if (!c->def.com_effector)
 			continue;
 		struct xform inv;
 		xform_inv(&s->site_xf[c->def.effector_site], &inv);
-		xform_apply(&inv, s->com, c->com_local);
+		xform_apply(&inv, com, c->com_local);
 	}
 }
 
@@ -656,8 +691,8 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 		has_com |= d->com_effector;
 	}
 	res.stepped = ik_energy_step_factor(&ik->e, m, s, opt->step_pos, opt->step_ori);
-	double com_prev[3];
-	memcpy(com_prev, s->com, sizeof com_prev);
+	double com_prev[3], com_now[3];
+	ik_com(ik, s, com_prev);
 	int rounds = has_com ? opt->balance_rounds : 1, first = 1;
 	for (int r = 0; r < rounds; r++) {
 		res.balance_rounds = r + 1;
@@ -688,9 +723,10 @@ ik_solve(struct ik *ik, const struct model *m, struct state *s, const struct ik_
 			break;
 		}
 		double moved = 0;
+		ik_com(ik, s, com_now);
 		for (int i = 0; i < 3; i++)
-			moved += (s->com[i] - com_prev[i]) * (s->com[i] - com_prev[i]);
-		memcpy(com_prev, s->com, sizeof com_prev);
+			moved += (com_now[i] - com_prev[i]) * (com_now[i] - com_prev[i]);
+		memcpy(com_prev, com_now, sizeof com_prev);
 		if (sqrt(moved) < opt->balance_tol)
 			break;
 	}
@@ -725,9 +761,11 @@ ik_constraint_error(const struct ik *ik, const struct model *m, const struct sta
 	struct ik_con tmp = ik->e.con[c];
 	tmp.goal_pos = tmp.goal_ori = tmp.def.goal_xf;
 	if (tmp.def.com_effector) {
+		double com[3];
 		struct xform inv;
+		ik_com(ik, s, com);
 		xform_inv(&s->site_xf[tmp.def.effector_site], &inv);
-		xform_apply(&inv, s->com, tmp.com_local);
+		xform_apply(&inv, com, tmp.com_local);
 	}
 	struct xform E, Gp, Go;
 	ik_con_frames(&tmp, m, s, &E, &Gp, &Go);

@@ -35,6 +35,7 @@
 #include "figure/state.h"
 #include "pose/ik_constraint.h"
 #include "pose/ik_work.h"
+#include "pose/point_mass.h"
 
 /* why a solve stopped */
 enum ik_status {
@@ -123,6 +124,18 @@ int ik_enable(struct ik *ik, int c, int on);
  */
 int ik_set_spring(struct ik *ik, const struct model *m, int dof, int side, double angle,
 		  double weight);
+
+/*
+ * The weights the figure carries (point_mass.h): from the next solve on, a
+ * constraint whose effector is the centre of mass holds the centre of mass
+ * of the figure with them. Copied (at most POINT_MASS_MAX); n = 0 clears
+ * them. Returns 0, or -1 for masses the figure cannot carry (nothing changes).
+ */
+int ik_set_point_masses(struct ik *ik, const struct model *m, const struct point_mass *pm, int n);
+/* the weights as set; returns their count */
+int ik_point_masses(const struct ik *ik, const struct point_mass **pm);
+/* the centre of mass the com effectors hold: the figure's with the weights (needs kin_com) */
+void ik_com(const struct ik *ik, const struct state *s, double dest[3]);
 
 /*
  * Solves the enabled constraints from the state's posture (warm start).

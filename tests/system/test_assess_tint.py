@@ -33,7 +33,7 @@ def test_set_view_tint_takes_each_method_and_off(daemon):
         c.request(VIEW)
         assert tints(c) == {"main": "off"}
         for t in ("rula", "reba", "owas", "off"):
-            assert c.request(f"set view main tint={t}") == {"view": "main", "tint": t}
+            assert c.request(f"set view main tint={t}") == {"view": "main", "tint": t, "loads": "on"}
             assert tints(c) == {"main": t}
 
 
