@@ -21,23 +21,6 @@
 #define ASSESS_LOAD_MAX_KG 1000.0 /* a load a person's hands could hold, and then some */
 #define REPLY_BUF (1024 * 1024)   /* a family's replies: up to 40 figures of a few KB */
 
-/* the text in j parsed and its keys added to dest; 0, or -1 with the error set */
-static int
-merge_json(struct cmd_ctx *c, json_t *dest, const struct jbuf *j)
-{
-	if (j->overflow)
-		return cmd_fail(c, "internal", "the reply did not fit its buffer");
-	json_error_t e;
-	json_t *o = json_loadb(j->buf, j->len, 0, &e);
-	if (!o || !json_is_object(o)) {
-		json_decref(o);
-		return cmd_fail(c, "internal", "the reply's JSON: %s", e.text);
-	}
-	json_object_update(dest, o);
-	json_decref(o);
-	return 0;
-}
-
 /* the slot of a human named by ref, or -1 with the error set */
 static int
 human_of(struct cmd_ctx *c, const char *ref, const struct assess_live_fig **live)
@@ -332,7 +315,7 @@ assess_method(struct cmd_ctx *c, enum assess_method m)
 	} else {
 		score_one(c, slot[0], &o, &j);
 	}
-	int rc = merge_json(c, c->result, &j);
+	int rc = cmd_merge_json(c, c->result, &j);
 	jbuf_free(&j);
 	return rc;
 }
@@ -381,7 +364,7 @@ cmd_get_angles(struct cmd_ctx *c)
 		jbuf_str(&j, body_angle_names[i].unit);
 	}
 	jbuf_raw(&j, "}}");
-	int rc = merge_json(c, c->result, &j);
+	int rc = cmd_merge_json(c, c->result, &j);
 	jbuf_free(&j);
 	return rc;
 }

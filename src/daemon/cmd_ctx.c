@@ -13,6 +13,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "daemon/jbuf.h"
 #include "daemon/statefile.h"
 #include "pose/attach.h"
 
@@ -259,4 +260,20 @@ cmd_read_file(struct cmd_ctx *c, const char *rel, size_t *len)
 		d->file_read.len = *len;
 	}
 	return text;
+}
+
+int
+cmd_merge_json(struct cmd_ctx *c, json_t *dest, const struct jbuf *j)
+{
+	if (j->overflow)
+		return cmd_fail(c, "internal", "the reply did not fit its buffer");
+	json_error_t e;
+	json_t *o = json_loadb(j->buf, j->len, 0, &e);
+	if (!o || !json_is_object(o)) {
+		json_decref(o);
+		return cmd_fail(c, "internal", "the reply's JSON: %s", e.text);
+	}
+	json_object_update(dest, o);
+	json_decref(o);
+	return 0;
 }

@@ -60,4 +60,12 @@ json_t *cmd_attachments(const struct env *e, int fig);
 /* "rot=AXIS,ANGLE" (AXIS x, y, z or X,Y,Z) or "yaw=ANGLE" among the args; *given 0 when neither */
 int cmd_rotation(struct cmd_ctx *c, double r[9], int *given);
 
+/*
+ * The JSON text a handler wrote without allocating (an assessment, an
+ * analysis) parsed and its keys added to dest: 0, or -1 with the error set
+ * (the text overflowed its buffer, or is not an object)
+ */
+struct jbuf;
+int cmd_merge_json(struct cmd_ctx *c, json_t *dest, const struct jbuf *j);
+
 #endif

@@ -15,23 +15,6 @@
 
 #define REPLY_BUF (4 * 1024 * 1024) /* a family's replies: up to 40 figures of up to ~80 KB */
 
-/* the text in j parsed and its keys added to dest; 0, or -1 with the error set */
-static int
-merge_json(struct cmd_ctx *c, json_t *dest, const struct jbuf *j)
-{
-	if (j->overflow)
-		return cmd_fail(c, "internal", "the reply did not fit its buffer");
-	json_error_t e;
-	json_t *o = json_loadb(j->buf, j->len, 0, &e);
-	if (!o || !json_is_object(o)) {
-		json_decref(o);
-		return cmd_fail(c, "internal", "the reply's JSON: %s", e.text);
-	}
-	json_object_update(dest, o);
-	json_decref(o);
-	return 0;
-}
-
 /* figure slot fig's analysis, its whole reply object, into j */
 static void
 analysis_of(struct cmd_ctx *c, int fig, const struct loads_live_fig *a, struct jbuf *j)
@@ -83,7 +66,7 @@ cmd_analyze_loads(struct cmd_ctx *c)
 	} else {
 		analysis_of(c, slot[0], a[0], &j);
 	}
-	int rc = merge_json(c, c->result, &j);
+	int rc = cmd_merge_json(c, c->result, &j);
 	jbuf_free(&j);
 	return rc;
 }

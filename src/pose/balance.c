@@ -50,12 +50,11 @@ balance_hull(double (*p)[2], int n, double (*h)[2])
 	return n > 1 ? k - 1 : n;
 }
 
-/* corners of a geom's bounding box in the world */
+/* the half extents of geom g's bounding box in its own frame; 0 for a kind without one */
 static int
-geom_corners(const struct model *m, const struct state *s, int g, double (*dest)[3])
+geom_half(const struct model *m, int g, double half[3])
 {
 	const double *sz = &m->geom_size[3 * g];
-	double half[3];
 	switch ((enum geom_kind)m->geom_kind[g]) {
 	case GEOM_BOX:
 	case GEOM_MESH:
@@ -72,6 +71,16 @@ geom_corners(const struct model *m, const struct state *s, int g, double (*dest)
 	default:
 		return 0;
 	}
+	return 1;
+}
+
+/* corners of a geom's bounding box in the world */
+static int
+geom_corners(const struct model *m, const struct state *s, int g, double (*dest)[3])
+{
+	double half[3];
+	if (!geom_half(m, g, half))
+		return 0;
 	struct xform loc, x;
 	mathx_quat_to_mat(&m->geom_quat[4 * g], loc.r);
 	memcpy(loc.p, &m->geom_pos[3 * g], sizeof loc.p);
@@ -147,24 +156,9 @@ balance_touches_floor(const struct model *m, const struct state *s, int seg, dou
 		return 0;
 	const struct xform *x = &s->seg_xf[seg];
 	for (int g = m->seg_geom0[seg]; g < m->seg_geom0[seg] + m->seg_ngeom[seg]; g++) {
-		const double *sz = &m->geom_size[3 * g];
 		double half[3];
-		switch ((enum geom_kind)m->geom_kind[g]) {
-		case GEOM_BOX:
-		case GEOM_MESH:
-			half[0] = sz[0] / 2, half[1] = sz[1] / 2, half[2] = sz[2] / 2;
-			break;
-		case GEOM_ELLIPSOID:
-			half[0] = sz[0], half[1] = sz[1], half[2] = sz[2];
-			break;
-		case GEOM_CYLINDER:
-		case GEOM_CAPSULE:
-			half[0] = half[2] = sz[0];
-			half[1] = sz[1] / 2 + (m->geom_kind[g] == GEOM_CAPSULE ? sz[0] : 0);
-			break;
-		default:
+		if (!geom_half(m, g, half))
 			continue;
-		}
 		double gr[9], w[9], c[3];
 		mathx_quat_to_mat(&m->geom_quat[4 * g], gr);
 		mathx_mat3_mul(x->r, gr, w);
