@@ -165,8 +165,6 @@ reach_solve(struct reach *r, const struct model *m, const struct state *s,
 	struct ik_options opt = ik_default_options();
 	opt.step_pos = opt.step_ori = 0; /* the whole way in one solve */
 	opt.budget_us = 0;               /* no clock: the verdict does not depend on the machine */
-	opt.max_iter = 400;
-	opt.settle_rel = 0;
 	res->ik = ik_solve(r->ik, m, r->copy, &opt, NULL);
 
 	const struct xform *palm = &r->copy->site_xf[r->b.s_palm[q->side]];
