@@ -98,6 +98,7 @@ static const struct group_key group_table[] = {
 	{ "settle", "", G_CONSTRAINTS },
 
 	{ "assess", NULL, G_ERGONOMICS },
+	{ "can", "reach", G_ERGONOMICS },
 	{ "add", "load", G_ERGONOMICS },
 	{ "list", "loads", G_ERGONOMICS },
 	{ "delete", "load", G_ERGONOMICS },
