@@ -10,8 +10,8 @@
  * body: the hand's chain runs down through the legs to the root, both feet
  * held where they stand (toes and heels), and with balance on, the centre
  * of mass (with the weights carried) held over the balance point, so the
- * figure bends, squats and shifts to reach. The knee and elbow limit
- * springs (§D.1.6) are those of the behaviours.
+ * figure bends, squats and shifts to reach. The behaviours' knee and
+ * elbow springs (§D.1.6) are off: a reach goes to the joints' limits.
  *
  * A reach object is made once for a model and reused: solving allocates
  * nothing.
