@@ -1,0 +1,239 @@
+"""The manikin's eye view (`add view NAME eyes=FIG [which=left|right|both] [hfov=DEG]`).
+
+- The camera is the eyes: for one eye at its eyeball's `gaze` site looking along the site's
+  +z axis, for both eyes at the midpoint of the two sites looking along the mean of their
+  lines of sight; checked to 1e-9 against `get site` after `move head` and `move eyes`, and
+  frame by frame while the behaviours turn the head (`pick` at the picture's centre, which
+  reads the camera the last frame placed, gives the same origin and direction).
+- The horizontal field of view: the mouse lines through the middle of the picture's left and
+  right edges are hfov apart (90 deg binocular for both eyes, 100 deg for one, or as set);
+  the vertical one follows from the aspect.
+- A session keeps the view (its three words written only for an eye view); a session
+  written before, without them, reads as it did.
+- Bad input is refused and changes no view.
+- The picture is seen from inside the head and the head does not block it: the eyeball
+  (12 mm) and the face lie nearer than the camera's near plane (5 cm), and the inside of the
+  head is not drawn.
+"""
+import base64
+import math
+
+import numpy as np
+
+from daemon import daemon, daemon_factory  # noqa: F401 (fixtures)
+from test_assess_tint import decode_png
+from test_behave_daemon import LIBRARY
+
+W, H = 320, 240
+BAND = 2 * 20  # the message and status lines at the bottom (their text changes)
+
+
+def site(c, name):
+    r = c.request(f"get site jack {name}")
+    rot = np.array(r["rotation"]).reshape(3, 3)  # row-major: the columns are the site's axes
+    return np.array(r["position"]), rot[:, 2]
+
+
+def expected(c, which):
+    """the camera's place and line of sight from the eye sites, as the docs define them"""
+    lp, lz = site(c, "eyeball_l.gaze")
+    rp, rz = site(c, "eyeball_r.gaze")
+    if which == "left":
+        return lp, lz
+    if which == "right":
+        return rp, rz
+    d = lz + rz
+    return (lp + rp) / 2, d / np.linalg.norm(d)
+
+
+def view(c, name):
+    return next(v for v in c.request("list views")["views"] if v["name"] == name)
+
+
+def camera(c, name):
+    v = view(c, name)
+    eye, target = np.array(v["eye"]), np.array(v["target"])
+    d = target - eye
+    return eye, d / np.linalg.norm(d)
+
+
+def assert_on_eyes(c, name, which):
+    eye, sight = camera(c, name)
+    want_eye, want_sight = expected(c, which)
+    assert np.abs(eye - want_eye).max() < 1e-9, (name, eye, want_eye)
+    assert np.abs(sight - want_sight).max() < 1e-9, (name, sight, want_sight)
+
+
+def angle(a, b):
+    return math.degrees(math.acos(max(-1.0, min(1.0, float(np.dot(a, b))))))
+
+
+def test_the_camera_is_the_eyes_after_move_head_and_move_eyes(daemon):
+    with daemon.client() as c:
+        c.request("load human as jack")
+        for which in ("both", "left", "right"):
+            c.request(f"add view {which} eyes=jack which={which} width={W} height={H}")
+        c.request("add view plain")
+        assert "eyes" not in view(c, "plain")
+        v = view(c, "both")
+        assert (v["eyes"], v["which"], v["hfov"], v["icons"]) == ("jack", "both", 90.0, False)
+        assert view(c, "left")["hfov"] == 100.0 and view(c, "right")["hfov"] == 100.0
+        for which in ("both", "left", "right"):
+            assert_on_eyes(c, which, which)
+        # standing straight, eyes ahead: the figure faces +z
+        assert np.abs(camera(c, "both")[1] - [0, 0, 1]).max() < 1e-9
+        c.request("behave jack on")
+        c.request("move head jack 1.5,0.8,1.5")
+        c.request("move eyes jack 0.8,1.2,1.5")
+        c.request("settle frames=300")
+        for which in ("both", "left", "right"):
+            assert_on_eyes(c, which, which)
+        # the eyes fixate the point: the camera of one eye looks at it
+        eye, sight = camera(c, "left")
+        to = np.array([0.8, 1.2, 1.5]) - eye
+        assert angle(sight, to / np.linalg.norm(to)) < 1.0
+        # the picture's width is the horizontal field of view, its height follows the aspect
+        for name, hfov in (("both", 90.0), ("left", 100.0)):
+            left = np.array(c.request(f"pick {name} 0 {H / 2}")["direction"])
+            right = np.array(c.request(f"pick {name} {W} {H / 2}")["direction"])
+            top = np.array(c.request(f"pick {name} {W / 2} 0")["direction"])
+            mid = np.array(c.request(f"pick {name} {W / 2} {H / 2}")["direction"])
+            assert abs(angle(left, right) - hfov) < 1e-6, name
+            fovy = 2 * math.degrees(math.atan(math.tan(math.radians(hfov / 2)) * H / W))
+            assert abs(2 * angle(top, mid) - fovy) < 1e-6, name
+            assert abs(view(c, name)["fovy"] - fovy) < 1e-9
+        c.request("set camera left hfov=60")
+        left = np.array(c.request(f"pick left 0 {H / 2}")["direction"])
+        right = np.array(c.request(f"pick left {W} {H / 2}")["direction"])
+        assert abs(angle(left, right) - 60) < 1e-6
+        # a picture through the eyes renders at the view's size
+        r = c.request("render view both")
+        assert (r["width"], r["height"]) == (W, H)
+
+
+def test_the_view_follows_frame_by_frame(daemon):
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request(f"add view eyes eyes=jack width={W} height={H}")
+        c.request("behave jack on")
+        c.request("move head jack -1.5,2.0,1.0")
+        sights = []
+        for _ in range(12):
+            c.request("settle frames=1")
+            # pick reads the camera as the last frame left it (no placing of its own); the
+            # daemon's own frames go on between requests, so the reading counts when the
+            # camera did not move while the sites were read
+            for _attempt in range(20):
+                p = c.request(f"pick eyes {W / 2} {H / 2}")
+                want_eye, want_sight = expected(c, "both")
+                if c.request(f"pick eyes {W / 2} {H / 2}") == p:
+                    break
+            else:
+                raise AssertionError("the head never held still for three requests")
+            assert np.abs(np.array(p["origin"]) - want_eye).max() < 1e-9
+            assert np.abs(np.array(p["direction"]) - want_sight).max() < 1e-9
+            sights.append(want_sight)
+        # the head did turn while the frames ran, and the camera went with it
+        assert angle(sights[0], sights[-1]) > 2.0
+
+
+def test_a_session_keeps_the_eye_view(daemon):
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request(f"add view eyes eyes=jack which=right hfov=75.125 width={W} height={H}")
+        c.request("add view plain width=320 height=240 eye=3,1.2,0 target=0,0.95,0")
+        c.request("set joint jack spine_17 0.2 0.1 0.3")
+        before = c.request("list views")["views"]
+        c.request("save session s.ses")
+        text = (daemon.state_dir / "s.ses").read_text()
+        lines = {ln.split()[1]: ln for ln in text.splitlines() if ln.startswith("view ")}
+        assert lines["eyes"].endswith(" eyes=jack which=right hfov=75.125"), lines
+        assert "eyes=" not in lines["plain"], lines
+        c.request("delete view eyes")
+        c.request("set joint jack spine_17 0 0 0")
+        c.request("load session s.ses")
+        assert c.request("list views")["views"] == before
+        assert_on_eyes(c, "eyes", "right")
+    daemon.restart()
+    with daemon.client() as c:
+        assert c.request("list views")["views"] == before
+        assert_on_eyes(c, "eyes", "right")
+
+
+def test_a_session_from_before_reads_as_it_did(daemon):
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request("save session probe.ses")
+        kept = [ln for ln in (daemon.state_dir / "probe.ses").read_text().splitlines()
+                if not ln.startswith("view ")]
+        old_view = "view old width=320 height=240 icons=1 eye=3,1.5,0.5 target=0,1,0 fovy=35"
+        assert kept[-1] == "end"
+        (daemon.state_dir / "old.ses").write_text("\n".join(kept[:-1] + [old_view, "end"]) + "\n")
+        c.request("load session old.ses")
+        v = c.request("list views")["views"]
+        assert v == [{"name": "old", "width": 320, "height": 240, "eye": [3, 1.5, 0.5],
+                      "target": [0, 1, 0], "fovy": 35, "icons": True, "tint": "off",
+                      "loads": "on"}]
+        c.request("save session again.ses")
+        again = (daemon.state_dir / "again.ses").read_text()
+        assert old_view + "\n" in again
+        # a damaged eye view's line is refused, the session's state not half taken
+        (daemon.state_dir / "bad.ses").write_text(
+            again.replace(old_view, old_view + " eyes=jack which=middle hfov=90"))
+        r = c.request_reply("load session bad.ses")
+        assert not r["ok"], r
+        assert c.request("list views")["views"] == v
+
+
+def test_bad_input_is_refused_and_changes_nothing(daemon_factory):
+    with daemon_factory(extra=LIBRARY).client() as c:
+        c.request("load human as jack")
+        c.request("load figure lib:table.fig as table")
+        c.request(f"add view eyes eyes=jack width={W} height={H}")
+        c.request("add view plain")
+        before = c.request("list views")["views"]
+        for line, code in (("add view e eyes=nobody", "not-found"),
+                           ("add view e eyes=table", "bad-argument"),
+                           ("add view e eyes=jack which=middle", "bad-argument"),
+                           ("add view e eyes=jack hfov=0", "bad-number"),
+                           ("add view e eyes=jack hfov=171", "bad-number"),
+                           ("add view e eyes=jack hfov=wide", "bad-number"),
+                           ("add view e eyes=jack eye=0,1,2", "bad-argument"),
+                           ("add view e eyes=jack fovy=50", "bad-argument"),
+                           ("add view e which=left", "bad-argument"),
+                           ("add view e hfov=80", "bad-argument"),
+                           ("add view eyes eyes=jack", "exists"),
+                           ("set camera eyes eye=0,1,2 target=0,1,0", "bad-argument"),
+                           ("set camera eyes fovy=30", "bad-argument"),
+                           ("set camera eyes hfov=200", "bad-number"),
+                           ("set camera plain hfov=50", "bad-argument")):
+            reply = c.request_reply(line)
+            assert not reply["ok"] and reply["error"]["code"] == code, (line, reply)
+            assert c.request("list views")["views"] == before, line
+        # the figure gone, the view stays where the eyes last were; back, it follows again
+        c.request("unload figure jack")
+        assert c.request("list views")["views"] == before
+        c.request("render view eyes")
+        c.request("load human as jack")
+        c.request("set joint jack spine_17 0.3 0 0")
+        assert_on_eyes(c, "eyes", "both")
+
+
+def picture(c, name):
+    return decode_png(base64.b64decode(c.request(f"render view {name}")["png"]))[:-BAND]
+
+
+def test_the_picture_is_seen_from_inside_the_head(daemon):
+    """Looking straight ahead at nothing, the eye view is the picture an ordinary camera
+    at the same place shows with the figure gone: its own head hides nothing."""
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request(f"add view eyes eyes=jack width={W} height={H}")
+        v = view(c, "eyes")
+        place = (f"width={W} height={H} eye={','.join(map(repr, v['eye']))} "
+                 f"target={','.join(map(repr, v['target']))} fovy={v['fovy']!r}")
+        c.request(f"add view same {place}")
+        through_eyes = picture(c, "eyes")
+        c.request("unload figure jack")
+        nobody = picture(c, "same")
+    assert np.array_equal(through_eyes, nobody)
