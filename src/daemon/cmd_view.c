@@ -303,6 +303,7 @@ cmd_layout(struct cmd_ctx *c)
 		e->view[slots[i]].height = T.t[i].h;
 	}
 	e->nlayout = c->argc;
+	eyeview_follow_all(e); /* an eye view's height changed: its vertical field follows */
 	return layout_reply(c);
 }
 

@@ -109,6 +109,16 @@ def test_the_camera_is_the_eyes_after_move_head_and_move_eyes(daemon):
         # a picture through the eyes renders at the view's size
         r = c.request("render view both")
         assert (r["width"], r["height"]) == (W, H)
+        # at the kiosk a tile like any other: resized to its tile, the width stays hfov wide
+        tiles = c.request("layout both plain")["tiles"]
+        tile = next(t for t in tiles if t["view"] == "both")
+        w, h = tile["width"], tile["height"]
+        assert (w, h) != (W, H)
+        left = np.array(c.request(f"pick both 0 {h / 2}")["direction"])
+        right = np.array(c.request(f"pick both {w} {h / 2}")["direction"])
+        assert abs(angle(left, right) - 90) < 1e-6
+        assert_on_eyes(c, "both", "both")
+        c.request("render screen")
 
 
 def test_the_view_follows_frame_by_frame(daemon):
