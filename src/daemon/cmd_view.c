@@ -115,6 +115,7 @@ read_eyes(struct cmd_ctx *c, struct env_view *v)
 		return -1;
 	snprintf(v->eyes, sizeof v->eyes, "%s", e->fig[fig].name);
 	v->icons = 0; /* what the manikin sees: the icons only when asked for */
+	v->ncones = eyeview_default_cones(v->cones_deg);
 	if (!eyeview_follow(e, v))
 		return cmd_fail(c, "bad-argument", "%s's eyes have no line of sight", v->eyes);
 	return 0;
@@ -203,33 +204,51 @@ cmd_set_camera(struct cmd_ctx *c)
 }
 
 /*
- * set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off]: the humans in the
- * view coloured by that assessment's part scores (view_tint.h), or in their
- * own colours; the loads on the figures drawn as arrows, or not
+ * set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off] [cones=off|DEG,...]:
+ * the humans in the view coloured by that assessment's part scores
+ * (view_tint.h), or in their own colours; the loads on the figures drawn as
+ * arrows, or not; an eye view's cones marked about the line of sight
  */
 int
 cmd_set_view(struct cmd_ctx *c)
 {
-	static const char *const keys[] = { "tint", "loads" };
+	static const char *const keys[] = { "tint", "loads", "cones" };
 	int v = view_of(c, c->argv[0]);
-	if (v < 0 || only_keys(c, 1, keys, 2) < 0)
+	if (v < 0 || only_keys(c, 1, keys, 3) < 0)
 		return -1;
 	const char *tint = cmd_key(c, "tint"), *loads = cmd_key(c, "loads");
+	const char *cones = cmd_key(c, "cones");
 	int t = tint ? env_tint_find(tint) : -1;
-	if (!tint && !loads)
-		return cmd_fail(c, "arity", "set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off]");
+	struct env_view *w = &c->d->env.view[v];
+	double deg[ENV_VIEW_CONES];
+	int ncones = 0;
+	if (!tint && !loads && !cones)
+		return cmd_fail(c, "arity", "set view VIEW [tint=rula|reba|owas|strength|off] "
+					    "[loads=on|off] [cones=off|DEG,...]");
 	if (tint && t < 0)
 		return cmd_fail(c, "bad-argument", "tint=rula|reba|owas|strength|off, not '%.40s'", tint);
 	if (loads && strcmp(loads, "on") && strcmp(loads, "off"))
 		return cmd_fail(c, "bad-argument", "loads=on|off, not '%.40s'", loads);
-	struct env_view *w = &c->d->env.view[v];
+	if (cones && !w->eyes[0])
+		return cmd_fail(c, "bad-argument", "cones= are an eye view's (add view NAME eyes=FIG)");
+	if (cones && (ncones = eyeview_parse_cones(cones, deg)) < 0)
+		return cmd_fail(c, "bad-argument", "cones=off or 1 to %d full angles from %g to %g "
+				"degrees, e.g. 3,20,40,60", ENV_VIEW_CONES, EYEVIEW_CONE_MIN,
+				EYEVIEW_CONE_MAX);
 	if (tint)
 		w->tint = t;
 	if (loads)
 		w->loads_hidden = !strcmp(loads, "off");
+	if (cones) {
+		memset(w->cones_deg, 0, sizeof w->cones_deg);
+		memcpy(w->cones_deg, deg, (size_t)ncones * sizeof *deg);
+		w->ncones = ncones;
+	}
 	json_object_set_new(c->result, "view", json_string(w->name));
 	json_object_set_new(c->result, "tint", json_string(env_tint_str(w->tint)));
 	json_object_set_new(c->result, "loads", json_string(w->loads_hidden ? "off" : "on"));
+	if (w->eyes[0])
+		json_object_set_new(c->result, "cones", cmd_vec(w->cones_deg, w->ncones));
 	return 0;
 }
 
@@ -341,6 +360,7 @@ cmd_list_views(struct cmd_ctx *c)
 			json_object_set_new(o, "eyes", json_string(v->eyes));
 			json_object_set_new(o, "which", json_string(eyeview_which_str(v->eyes_which)));
 			json_object_set_new(o, "hfov", json_real(v->hfov_deg));
+			json_object_set_new(o, "cones", cmd_vec(v->cones_deg, v->ncones));
 		}
 		json_array_append_new(list, o);
 	}

@@ -359,6 +359,8 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 		env_sync_solver(e, i);
 		view_add_goals(sc->dl, f->ik, f->model, f->state);
 	}
+	if (vw->eyes[0]) /* the cones about the line of sight (eyeview.h) */
+		view_add_cone_marks(sc->dl, vw->cones_deg, vw->ncones);
 	if (manipulating)
 		scene_add_manip(sc->dl, ia);
 	add_hover(sc, d);

@@ -30,6 +30,7 @@
 #define ENV_VIEW_FOVY_DEG 40.0 /* a view's vertical field of view unless it asks for another */
 #define ENV_VIEW_FOVY_MIN 1.0  /* the fields of view a view may ask for, degrees */
 #define ENV_VIEW_FOVY_MAX 170.0
+#define ENV_VIEW_CONES 4       /* the cones an eye view's picture marks at most */
 
 enum env_err {
 	ENV_OK = 0,
@@ -173,6 +174,8 @@ struct env_view {
 	char eyes[MODEL_NAME_MAX]; /* the figure's name; "": a camera of its own */
 	int eyes_which;            /* enum env_eyes */
 	double hfov_deg;           /* horizontal field of view, degrees, kept as given */
+	double cones_deg[ENV_VIEW_CONES]; /* an eye view's marked cones: full angles, degrees */
+	int ncones;                /* how many are marked; 0: none */
 };
 
 struct env {

@@ -1,5 +1,7 @@
 /* eyeview.c - the camera of a view through a manikin's eyes */
+#include <errno.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "pose/eyeview.h"
@@ -25,6 +27,46 @@ double
 eyeview_default_hfov(int which)
 {
 	return which == ENV_EYES_BOTH ? EYEVIEW_HFOV_BOTH : EYEVIEW_HFOV_ONE;
+}
+
+int
+eyeview_default_cones(double dest[ENV_VIEW_CONES])
+{
+	static const double d[] = { EYEVIEW_CONE_CENTRAL, EYEVIEW_CONE_READING,
+				    EYEVIEW_CONE_SYMBOLS, EYEVIEW_CONE_COLOUR };
+	_Static_assert(sizeof d / sizeof d[0] == ENV_VIEW_CONES, "a default for every cone");
+	memcpy(dest, d, sizeof d);
+	return ENV_VIEW_CONES;
+}
+
+int
+eyeview_parse_cones(const char *s, double dest[ENV_VIEW_CONES])
+{
+	if (!strcmp(s, "off"))
+		return 0;
+	int n = 0;
+	for (;;) {
+		char *end;
+		errno = 0;
+		double d = strtod(s, &end);
+		if (end == s || errno || n == ENV_VIEW_CONES || !(d >= EYEVIEW_CONE_MIN) ||
+		    d > EYEVIEW_CONE_MAX)
+			return -1;
+		dest[n++] = d;
+		if (!*end)
+			return n;
+		if (*end != ',')
+			return -1;
+		s = end + 1;
+	}
+}
+
+int
+eyeview_cones_default(const struct env_view *v)
+{
+	double d[ENV_VIEW_CONES];
+	int n = eyeview_default_cones(d);
+	return v->ncones == n && !memcmp(v->cones_deg, d, sizeof d);
 }
 
 int

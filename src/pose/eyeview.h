@@ -22,6 +22,30 @@
 #define EYEVIEW_HFOV_MAX 170.0 /* a perspective picture's: 180 would be a flat line */
 #define EYEVIEW_AIM 1.0        /* m: the target kept this far along the line of sight */
 
+/*
+ * The cones an eye view's picture marks by default (full angles about the
+ * line of sight, degrees; research file §6.2): CATIA V5 Human Builder's
+ * central spot, 3; DELMIA Human's central field limits for reading, 20,
+ * symbol recognition, 40, and colour discrimination, 60.
+ */
+#define EYEVIEW_CONE_CENTRAL 3.0
+#define EYEVIEW_CONE_READING 20.0
+#define EYEVIEW_CONE_SYMBOLS 40.0
+#define EYEVIEW_CONE_COLOUR 60.0
+#define EYEVIEW_CONE_MIN 0.5   /* a marked cone's full angle at least, degrees */
+#define EYEVIEW_CONE_MAX 170.0 /* and at most */
+
+/* the default cones into dest (ENV_VIEW_CONES of them); returns how many */
+int eyeview_default_cones(double dest[ENV_VIEW_CONES]);
+/*
+ * "off" (no cones: returns 0) or 1 to ENV_VIEW_CONES full angles "A,B,..."
+ * (bare numbers, degrees, each EYEVIEW_CONE_MIN to EYEVIEW_CONE_MAX) into
+ * dest; returns how many, or -1 (dest then undefined)
+ */
+int eyeview_parse_cones(const char *s, double dest[ENV_VIEW_CONES]);
+/* 1 when v marks the default cones */
+int eyeview_cones_default(const struct env_view *v);
+
 /* which eye (env_view.eyes_which) and back; -1: none such */
 const char *eyeview_which_str(int which);
 int eyeview_which_find(const char *name);

@@ -16,6 +16,7 @@
   head is not drawn.
 """
 import base64
+import colorsys
 import math
 
 import numpy as np
@@ -243,7 +244,85 @@ def test_the_picture_is_seen_from_inside_the_head(daemon):
         place = (f"width={W} height={H} eye={','.join(map(repr, v['eye']))} "
                  f"target={','.join(map(repr, v['target']))} fovy={v['fovy']!r}")
         c.request(f"add view same {place}")
+        c.request("set view eyes cones=off")
         through_eyes = picture(c, "eyes")
         c.request("unload figure jack")
         nobody = picture(c, "same")
     assert np.array_equal(through_eyes, nobody)
+
+
+def cone_radius(deg, fovy):
+    """pixels from the picture's centre to where a cone of full angle deg about the line of
+    sight meets it: a pinhole of vertical field fovy, H pixels high"""
+    return H / 2 * math.tan(math.radians(deg / 2)) / math.tan(math.radians(fovy / 2))
+
+
+def marks(c):
+    """the pixels the cones' marks change (off against on), their distances from the centre"""
+    on = picture(c, "eyes")
+    views = {v["name"]: v for v in c.request("list views")["views"]}
+    cones = views["eyes"]["cones"]
+    c.request("set view eyes cones=off")
+    off = picture(c, "eyes")
+    c.request(f"set view eyes cones={','.join(map(repr, cones)) or 'off'}")
+    ys, xs = np.nonzero(np.any(on != off, axis=2))
+    return on, np.hypot(xs + 0.5 - W / 2, ys + 0.5 - H / 2)
+
+
+def test_the_picture_marks_the_cones(daemon):
+    """Circles about the line of sight at the cones of the research file (§6.2: CATIA's
+    central 3 deg spot; DELMIA's reading 20, symbols 40, colour 60 deg), where a pinhole
+    camera of the view's field puts them; settable and kept in sessions."""
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request(f"add view eyes eyes=jack width={W} height={H}")
+        c.request("add view plain")
+        v = view(c, "eyes")
+        assert v["cones"] == [3, 20, 40, 60]
+        fovy = v["fovy"]
+        on, dist = marks(c)
+        radii = [cone_radius(d, fovy) for d in (3, 20, 40, 60)]
+        assert len(dist) > 400
+        # every pixel changed lies on one of the circles; every circle is drawn
+        assert all(min(abs(d - r) for r in radii) < 2.5 for d in dist), sorted(set(dist.round()))
+        for r in radii:
+            assert np.sum(np.abs(dist - r) < 2.5) > 2 * r, r
+        # the central spot is red, reading yellow, symbols green, colour blue: the pixel
+        # where each circle crosses the row through the centre, right of it
+        for r, (want, name) in zip(radii, ((0, "red"), (60, "yellow"), (120, "green"),
+                                           (215, "blue"))):
+            row = on[H // 2, int(W / 2 + r) - 1:int(W / 2 + r) + 2, :3].astype(float) / 255
+            rgb = max(row, key=lambda p: max(p) - min(p))  # the most coloured of the three
+            h, sat, _ = colorsys.rgb_to_hsv(*rgb)
+            assert sat > 0.25 and min(abs(h * 360 - want), 360 - abs(h * 360 - want)) < 25, \
+                (name, rgb)
+        # settable: two cones, then none
+        assert c.request("set view eyes cones=10,30")["cones"] == [10, 30]
+        _, dist = marks(c)
+        radii = [cone_radius(d, fovy) for d in (10, 30)]
+        assert all(min(abs(d - r) for r in radii) < 2.5 for d in dist)
+        for r in radii:
+            assert np.sum(np.abs(dist - r) < 2.5) > 2 * r, r
+        # bad cones are refused, nothing changes
+        before = c.request("list views")["views"]
+        for line in ("set view eyes cones=0.1", "set view eyes cones=1,2,3,4,5",
+                     "set view eyes cones=abc", "set view eyes cones=", "set view eyes cones=10,",
+                     "set view eyes cones=171", "set view plain cones=3"):
+            reply = c.request_reply(line)
+            assert not reply["ok"] and reply["error"]["code"] == "bad-argument", (line, reply)
+            assert c.request("list views")["views"] == before, line
+        # sessions: the default not written, others are
+        c.request("add view eyes2 eyes=jack which=left")
+        c.request("add view eyes3 eyes=jack which=right")
+        c.request("set view eyes3 cones=off")
+        c.request("save session s.ses")
+        text = (daemon.state_dir / "s.ses").read_text()
+        lines = {ln.split()[1]: ln for ln in text.splitlines() if ln.startswith("view ")}
+        assert lines["eyes"].endswith(" cones=10,30"), lines
+        assert lines["eyes3"].endswith(" cones=off"), lines
+        assert "cones=" not in lines["eyes2"] and "cones=" not in lines["plain"], lines
+        before = c.request("list views")["views"]
+        c.request("set view eyes cones=5")
+        c.request("load session s.ses")
+        assert c.request("list views")["views"] == before
+        assert view(c, "eyes3")["cones"] == [] and view(c, "eyes2")["cones"] == [3, 20, 40, 60]
