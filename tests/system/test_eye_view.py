@@ -326,3 +326,19 @@ def test_the_picture_marks_the_cones(daemon):
         c.request("load session s.ses")
         assert c.request("list views")["views"] == before
         assert view(c, "eyes3")["cones"] == [] and view(c, "eyes2")["cones"] == [3, 20, 40, 60]
+
+
+def test_undo_takes_back_the_eye_views_changes(daemon):
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request(f"add view eyes eyes=jack width={W} height={H}")
+        before = view(c, "eyes")
+        c.request("set view eyes cones=7")
+        c.request("set camera eyes hfov=45")
+        assert (view(c, "eyes")["cones"], view(c, "eyes")["hfov"]) == ([7], 45)
+        c.request("undo")
+        assert (view(c, "eyes")["cones"], view(c, "eyes")["hfov"]) == ([7], 90)
+        c.request("undo")
+        assert view(c, "eyes") == before
+        c.request("undo")
+        assert all(v["name"] != "eyes" for v in c.request("list views")["views"])
