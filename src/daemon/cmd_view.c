@@ -9,6 +9,7 @@
 #include "draw/sink.h"
 #include "draw/tiles.h"
 #include "daemon/statefile.h"
+#include "pose/eyeview.h"
 
 static int
 read_point(struct cmd_ctx *c, const char *key, double dest[3])
@@ -69,10 +70,62 @@ aim_ok(struct cmd_ctx *c, const double eye[3], const double target[3])
 	return 0;
 }
 
+/* hfov=DEG: an eye view's horizontal field of view in degrees (a bare number) */
+static int
+read_hfov(struct cmd_ctx *c, double *dest)
+{
+	const char *v = cmd_key(c, "hfov");
+	double d;
+	if (v && (words_number(v, UNIT_NONE, &d) < 0 || d < EYEVIEW_HFOV_MIN || d > EYEVIEW_HFOV_MAX))
+		return cmd_fail(c, "bad-number", "hfov: degrees from %g to %g", EYEVIEW_HFOV_MIN,
+				EYEVIEW_HFOV_MAX);
+	if (v)
+		*dest = d;
+	return 0;
+}
+
+/*
+ * eyes=FIG [which=left|right|both] [hfov=DEG]: the view's camera is the
+ * figure's eyes (eyeview.h), placed now; no camera of its own beside
+ */
+static int
+read_eyes(struct cmd_ctx *c, struct env_view *v)
+{
+	const char *eyes = cmd_key(c, "eyes"), *which = cmd_key(c, "which");
+	if (!eyes) {
+		if (which || cmd_key(c, "hfov"))
+			return cmd_fail(c, "bad-argument", "which= and hfov= are an eye view's (eyes=FIG)");
+		return 0;
+	}
+	if (cmd_key(c, "eye") || cmd_key(c, "target") || cmd_key(c, "fovy"))
+		return cmd_fail(c, "bad-argument",
+				"an eye view's camera is the figure's eyes: no eye=, target= or fovy=");
+	const struct env *e = &c->d->env;
+	int fig = cmd_figure(c, eyes), sites[2];
+	if (fig < 0)
+		return -1;
+	v->eyes_which = which ? eyeview_which_find(which) : ENV_EYES_BOTH;
+	if (v->eyes_which < 0)
+		return cmd_fail(c, "bad-argument", "which=left|right|both, not '%.40s'", which);
+	if (eyeview_sites(e->fig[fig].model, v->eyes_which, sites) < 0)
+		return cmd_fail(c, "bad-argument", "%s has no eyes (eyeball_l.gaze, eyeball_r.gaze)",
+				e->fig[fig].name);
+	v->hfov_deg = eyeview_default_hfov(v->eyes_which);
+	if (read_hfov(c, &v->hfov_deg) < 0)
+		return -1;
+	snprintf(v->eyes, sizeof v->eyes, "%s", e->fig[fig].name);
+	v->icons = 0; /* what the manikin sees: the icons only when asked for */
+	v->ncones = eyeview_default_cones(v->cones_deg);
+	if (!eyeview_follow(e, v))
+		return cmd_fail(c, "bad-argument", "%s's eyes have no line of sight", v->eyes);
+	return 0;
+}
+
 int
 cmd_add_view(struct cmd_ctx *c)
 {
-	static const char *const keys[] = { "width", "height", "eye", "target", "icons", "fovy" };
+	static const char *const keys[] = { "width", "height", "eye",  "target", "icons",
+					    "fovy",  "eyes",   "which", "hfov" };
 	struct env *e = &c->d->env;
 	const char *name = c->argv[0];
 	if (!words_is_name(name))
@@ -84,14 +137,15 @@ cmd_add_view(struct cmd_ctx *c)
 			      .fovy_deg = ENV_VIEW_FOVY_DEG };
 	snprintf(v.name, sizeof v.name, "%s", name);
 	const char *icons = cmd_key(c, "icons");
-	if (only_keys(c, 1, keys, 6) < 0 || read_size(c, "width", &v.width) < 0 ||
+	if (only_keys(c, 1, keys, 9) < 0 || read_size(c, "width", &v.width) < 0 ||
 	    read_size(c, "height", &v.height) < 0 || read_point(c, "eye", v.eye) < 0 ||
 	    read_point(c, "target", v.target) < 0 || aim_ok(c, v.eye, v.target) < 0 ||
-	    read_fovy(c, &v.fovy_deg) < 0)
+	    read_fovy(c, &v.fovy_deg) < 0 || read_eyes(c, &v) < 0)
 		return -1;
 	if (icons && strcmp(icons, "0") && strcmp(icons, "1"))
 		return cmd_fail(c, "bad-argument", "icons=0|1");
-	v.icons = !icons || !strcmp(icons, "1");
+	if (icons)
+		v.icons = !strcmp(icons, "1");
 	for (int i = 0; i < ENV_MAX_VIEWS; i++)
 		if (!e->view[i].used) {
 			e->view[i] = v;
@@ -113,11 +167,25 @@ view_of(struct cmd_ctx *c, const char *name)
 int
 cmd_set_camera(struct cmd_ctx *c)
 {
-	static const char *const keys[] = { "eye", "target", "fovy" };
+	static const char *const keys[] = { "eye", "target", "fovy", "hfov" };
 	int v = view_of(c, c->argv[0]);
-	if (v < 0 || only_keys(c, 1, keys, 3) < 0)
+	if (v < 0 || only_keys(c, 1, keys, 4) < 0)
 		return -1;
 	struct env_view *w = &c->d->env.view[v];
+	if (w->eyes[0]) { /* the eyes place it: only its width is the view's own */
+		double hfov = w->hfov_deg;
+		if (!cmd_key(c, "hfov") || c->argc != 2)
+			return cmd_fail(c, "bad-argument",
+					"%s looks through %s's eyes: set camera %s hfov=DEG only", w->name,
+					w->eyes, w->name);
+		if (read_hfov(c, &hfov) < 0)
+			return -1;
+		w->hfov_deg = hfov;
+		eyeview_follow(&c->d->env, w);
+		return 0;
+	}
+	if (cmd_key(c, "hfov"))
+		return cmd_fail(c, "bad-argument", "hfov= is an eye view's (add view NAME eyes=FIG)");
 	double eye[3], target[3], fovy = w->fovy_deg;
 	int aim = cmd_key(c, "eye") || cmd_key(c, "target");
 	if ((aim && (!cmd_key(c, "eye") || !cmd_key(c, "target"))) || (!aim && !cmd_key(c, "fovy")))
@@ -136,33 +204,51 @@ cmd_set_camera(struct cmd_ctx *c)
 }
 
 /*
- * set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off]: the humans in the
- * view coloured by that assessment's part scores (view_tint.h), or in their
- * own colours; the loads on the figures drawn as arrows, or not
+ * set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off] [cones=off|DEG,...]:
+ * the humans in the view coloured by that assessment's part scores
+ * (view_tint.h), or in their own colours; the loads on the figures drawn as
+ * arrows, or not; an eye view's cones marked about the line of sight
  */
 int
 cmd_set_view(struct cmd_ctx *c)
 {
-	static const char *const keys[] = { "tint", "loads" };
+	static const char *const keys[] = { "tint", "loads", "cones" };
 	int v = view_of(c, c->argv[0]);
-	if (v < 0 || only_keys(c, 1, keys, 2) < 0)
+	if (v < 0 || only_keys(c, 1, keys, 3) < 0)
 		return -1;
 	const char *tint = cmd_key(c, "tint"), *loads = cmd_key(c, "loads");
+	const char *cones = cmd_key(c, "cones");
 	int t = tint ? env_tint_find(tint) : -1;
-	if (!tint && !loads)
-		return cmd_fail(c, "arity", "set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off]");
+	struct env_view *w = &c->d->env.view[v];
+	double deg[ENV_VIEW_CONES];
+	int ncones = 0;
+	if (!tint && !loads && !cones)
+		return cmd_fail(c, "arity", "set view VIEW [tint=rula|reba|owas|strength|off] "
+					    "[loads=on|off] [cones=off|DEG,...]");
 	if (tint && t < 0)
 		return cmd_fail(c, "bad-argument", "tint=rula|reba|owas|strength|off, not '%.40s'", tint);
 	if (loads && strcmp(loads, "on") && strcmp(loads, "off"))
 		return cmd_fail(c, "bad-argument", "loads=on|off, not '%.40s'", loads);
-	struct env_view *w = &c->d->env.view[v];
+	if (cones && !w->eyes[0])
+		return cmd_fail(c, "bad-argument", "cones= are an eye view's (add view NAME eyes=FIG)");
+	if (cones && (ncones = eyeview_parse_cones(cones, deg)) < 0)
+		return cmd_fail(c, "bad-argument", "cones=off or 1 to %d full angles from %g to %g "
+				"degrees, e.g. 3,20,40,60", ENV_VIEW_CONES, EYEVIEW_CONE_MIN,
+				EYEVIEW_CONE_MAX);
 	if (tint)
 		w->tint = t;
 	if (loads)
 		w->loads_hidden = !strcmp(loads, "off");
+	if (cones) {
+		memset(w->cones_deg, 0, sizeof w->cones_deg);
+		memcpy(w->cones_deg, deg, (size_t)ncones * sizeof *deg);
+		w->ncones = ncones;
+	}
 	json_object_set_new(c->result, "view", json_string(w->name));
 	json_object_set_new(c->result, "tint", json_string(env_tint_str(w->tint)));
 	json_object_set_new(c->result, "loads", json_string(w->loads_hidden ? "off" : "on"));
+	if (w->eyes[0])
+		json_object_set_new(c->result, "cones", cmd_vec(w->cones_deg, w->ncones));
 	return 0;
 }
 
@@ -236,6 +322,7 @@ cmd_layout(struct cmd_ctx *c)
 		e->view[slots[i]].height = T.t[i].h;
 	}
 	e->nlayout = c->argc;
+	eyeview_follow_all(e); /* an eye view's height changed: its vertical field follows */
 	return layout_reply(c);
 }
 
@@ -253,6 +340,7 @@ cmd_get_layout(struct cmd_ctx *c)
 int
 cmd_list_views(struct cmd_ctx *c)
 {
+	eyeview_follow_all(&c->d->env); /* the eye views where the eyes are now */
 	json_t *list = json_array();
 	for (int i = 0; i < ENV_MAX_VIEWS; i++) {
 		const struct env_view *v = &c->d->env.view[i];
@@ -268,6 +356,12 @@ cmd_list_views(struct cmd_ctx *c)
 		json_object_set_new(o, "icons", json_boolean(v->icons));
 		json_object_set_new(o, "tint", json_string(env_tint_str(v->tint)));
 		json_object_set_new(o, "loads", json_string(v->loads_hidden ? "off" : "on"));
+		if (v->eyes[0]) {
+			json_object_set_new(o, "eyes", json_string(v->eyes));
+			json_object_set_new(o, "which", json_string(eyeview_which_str(v->eyes_which)));
+			json_object_set_new(o, "hfov", json_real(v->hfov_deg));
+			json_object_set_new(o, "cones", cmd_vec(v->cones_deg, v->ncones));
+		}
 		json_array_append_new(list, o);
 	}
 	json_object_set_new(c->result, "views", list);

@@ -18,6 +18,7 @@
 #include "daemon/tape_dev.h"
 #include "pose/attach.h"
 #include "pose/behave.h"
+#include "pose/eyeview.h"
 #include "pose/load_balance.h"
 
 uint64_t
@@ -189,6 +190,7 @@ frame(struct loop *L, const struct ik_clock *clock, uint64_t budget_us, int *cha
 		if (f->behave)
 			events_stability(&L->events, i);
 	}
+	eyeview_follow_all(e); /* the eye views move with the heads and eyes just solved */
 	L->d.stats.frame++;
 	L->round_solve_us += loop_real_now() - start;
 	L->round_solve_cpu_us += loop_thread_cpu_us() - start_cpu;

@@ -15,6 +15,7 @@
 #include "daemon/tint.h"
 #include "draw/sink.h"
 #include "draw/tiles.h"
+#include "pose/eyeview.h"
 #include "pose/load_balance.h"
 #include "interact/menu_draw.h"
 
@@ -319,6 +320,7 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	   size_t errlen)
 {
 	struct env *e = &d->env;
+	eyeview_follow(e, &e->view[v]); /* an eye view where the eyes are now */
 	const struct env_view *vw = &e->view[v];
 	if (scene_ready(sc, err, errlen) < 0)
 		return -1;
@@ -357,6 +359,8 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 		env_sync_solver(e, i);
 		view_add_goals(sc->dl, f->ik, f->model, f->state);
 	}
+	if (vw->eyes[0]) /* the cones about the line of sight (eyeview.h) */
+		view_add_cone_marks(sc->dl, vw->cones_deg, vw->ncones);
 	if (manipulating)
 		scene_add_manip(sc->dl, ia);
 	add_hover(sc, d);

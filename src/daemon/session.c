@@ -8,6 +8,7 @@
 
 #include "pose/attach.h"
 #include "pose/behave.h"
+#include "pose/eyeview.h"
 #include "figure/figure.h"
 #include "figure/human.h"
 #include "figure/kin.h"
@@ -222,6 +223,14 @@ session_write_with(const struct env *e, const struct assess_config *cfg, FILE *f
 			fprintf(f, " tint=%s", env_tint_str(v->tint));
 		if (v->loads_hidden) /* likewise: only when the loads' arrows are off */
 			fprintf(f, " loads=off");
+		if (v->eyes[0]) /* likewise: only a view through a figure's eyes */
+			fprintf(f, " eyes=%s which=%s hfov=%.17g", v->eyes,
+				eyeview_which_str(v->eyes_which), v->hfov_deg);
+		if (v->eyes[0] && !eyeview_cones_default(v)) { /* and its cones when not the default */
+			fprintf(f, " cones=%s", v->ncones ? "" : "off");
+			for (int k = 0; k < v->ncones; k++)
+				fprintf(f, "%s%.17g", k ? "," : "", v->cones_deg[k]);
+		}
 		fprintf(f, "\n");
 	}
 	if (e->nlayout) {
@@ -708,9 +717,10 @@ read_attach(struct reader *r, struct env *e)
 }
 
 /*
- * "view NAME width= height= icons= eye= target= [fovy=] [tint=] [loads=off]":
- * fovy (degrees), tint (an assessment's colours, off when absent) and loads
- * (the loads' arrows, on when absent) came later
+ * "view NAME width= height= icons= eye= target= [fovy=] [tint=] [loads=off]
+ * [eyes=FIG which= hfov= [cones=]]": fovy (degrees), tint (an assessment's colours,
+ * off when absent), loads (the loads' arrows, on when absent) and the eye
+ * view's three (a camera of its own when absent) came later
  */
 static int
 read_view(struct reader *r, struct env *e)
@@ -724,7 +734,26 @@ read_view(struct reader *r, struct env *e)
 	if (loads && strcmp(loads, "on") && strcmp(loads, "off"))
 		return fail(r, "view %s: loads=on|off", w->w[1]);
 	v.loads_hidden = loads && !strcmp(loads, "off");
-	if (w->n != 7 + (fovy != NULL) + (tint != NULL) + (loads != NULL) || !words_is_name(w->w[1]) ||
+	const char *eyes = arg(w, 2, "eyes"), *which = arg(w, 2, "which"), *hfov = arg(w, 2, "hfov");
+	if (eyes && (!words_is_name(eyes) || !which || !hfov ||
+		     (v.eyes_which = eyeview_which_find(which)) < 0 ||
+		     words_number(hfov, UNIT_NONE, &v.hfov_deg) < 0 || v.hfov_deg < EYEVIEW_HFOV_MIN ||
+		     v.hfov_deg > EYEVIEW_HFOV_MAX))
+		return fail(r, "view %s: eyes=FIG which=left|right|both hfov=%g..%g", w->w[1],
+			    EYEVIEW_HFOV_MIN, EYEVIEW_HFOV_MAX);
+	const char *cones = arg(w, 2, "cones");
+	if (eyes)
+		snprintf(v.eyes, sizeof v.eyes, "%s", eyes);
+	if (eyes)
+		v.ncones = eyeview_default_cones(v.cones_deg);
+	if (cones && (!eyes || (v.ncones = eyeview_parse_cones(cones, v.cones_deg)) < 0))
+		return fail(r, "view %s: cones=off|DEG,... (1 to %d, an eye view's)", w->w[1],
+			    ENV_VIEW_CONES);
+	for (int k = v.ncones; k < ENV_VIEW_CONES; k++)
+		v.cones_deg[k] = 0;
+	if (w->n != 7 + (fovy != NULL) + (tint != NULL) + (loads != NULL) + 3 * (eyes != NULL) +
+			    (cones != NULL) ||
+	    !words_is_name(w->w[1]) ||
 	    env_find_view(e, w->w[1]) >= 0 ||
 	    read_uint(arg(w, 2, "width"), 16384, &wd) < 0 || wd < 16 ||
 	    read_uint(arg(w, 2, "height"), 16384, &ht) < 0 || ht < 16 ||
@@ -734,7 +763,8 @@ read_view(struct reader *r, struct env *e)
 	    (fovy && (words_number(fovy, UNIT_NONE, &v.fovy_deg) < 0 ||
 		      v.fovy_deg < ENV_VIEW_FOVY_MIN || v.fovy_deg > ENV_VIEW_FOVY_MAX)))
 		return fail(r, "expected: view NAME width=W height=H icons=0|1 eye=X,Y,Z target=X,Y,Z "
-			       "[fovy=DEG] [tint=rula|reba|owas|strength|off] [loads=on|off]");
+			       "[fovy=DEG] [tint=rula|reba|owas|strength|off] [loads=on|off] "
+			       "[eyes=FIG which=left|right|both hfov=DEG [cones=off|DEG,...]]");
 	snprintf(v.name, sizeof v.name, "%s", w->w[1]);
 	v.width = (int)wd;
 	v.height = (int)ht;

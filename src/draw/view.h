@@ -346,6 +346,16 @@ void view_add_goals(struct drawlist *dl, const struct ik *ik, const struct model
 int view_add_balance(struct drawlist *dl, const struct model *m, const struct state *s,
 		     const double com[3]);
 
+/*
+ * The cones about the line of sight marked on a picture through the eyes
+ * (eyeview.h): for each full angle deg[i] (degrees) the circle where that
+ * cone about the camera's axis meets the picture, radius
+ * (height / 2) tan(deg / 2) / tan(fovy / 2) pixels about its centre, in
+ * the colour of its rank (the first red, then yellow, green, blue).
+ */
+#define VIEW_CONE_SEGMENTS 128 /* straight pieces of a cone's circle */
+void view_add_cone_marks(struct drawlist *dl, const double *deg, int n);
+
 /* an external load's arrow: this long per newton of force, within these lengths (m) */
 #define VIEW_LOAD_M_PER_N 0.002 /* 2 mm a newton: a 15 kg weight's 147 N, 29 cm */
 #define VIEW_LOAD_LEN_MIN 0.05  /* so that a small force still shows */

@@ -450,6 +450,27 @@ torque_ring(struct drawlist *dl, const double p[3], const double axis[3])
 }
 
 void
+view_add_cone_marks(struct drawlist *dl, const double *deg, int n)
+{
+	static const uint8_t rgba[4][4] = {
+		{ 235, 60, 50, 255 }, { 245, 200, 20, 255 }, { 40, 190, 80, 255 }, { 50, 140, 245, 255 }
+	};
+	double cx = dl->width / 2.0, cy = dl->height / 2.0;
+	double f = cy / tan(dl->cam.fovy / 2); /* pixels per unit of tan of the angle off the axis */
+	view_batch_begin(dl, VIEW_LINES, VIEW_SCREEN, 1.5f, 0);
+	for (int i = 0; i < n; i++) {
+		double r = f * tan(deg[i] * M_PI / 360);
+		for (int k = 0; k < VIEW_CONE_SEGMENTS; k++) {
+			double t0 = 2 * M_PI * k / VIEW_CONE_SEGMENTS;
+			double t1 = 2 * M_PI * (k + 1) / VIEW_CONE_SEGMENTS;
+			double a[3] = { cx + r * cos(t0), cy + r * sin(t0), 0 };
+			double b[3] = { cx + r * cos(t1), cy + r * sin(t1), 0 };
+			view_line(dl, a, b, rgba[i & 3]);
+		}
+	}
+}
+
+void
 view_add_load(struct drawlist *dl, const double p[3], const double force[3], const double torque[3],
 	      const char *label)
 {

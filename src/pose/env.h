@@ -30,6 +30,7 @@
 #define ENV_VIEW_FOVY_DEG 40.0 /* a view's vertical field of view unless it asks for another */
 #define ENV_VIEW_FOVY_MIN 1.0  /* the fields of view a view may ask for, degrees */
 #define ENV_VIEW_FOVY_MAX 170.0
+#define ENV_VIEW_CONES 4       /* the cones an eye view's picture marks at most */
 
 enum env_err {
 	ENV_OK = 0,
@@ -152,6 +153,13 @@ enum env_tint {
 	ENV_TINT_N,
 };
 
+/* which eye a view through a manikin's eyes looks from (eyeview.h) */
+enum env_eyes {
+	ENV_EYES_BOTH,  /* the cyclopean eye, midway between the two */
+	ENV_EYES_LEFT,
+	ENV_EYES_RIGHT,
+};
+
 /* a named view (§1.7: several graphics windows), its camera aimed at a point */
 struct env_view {
 	int used;
@@ -162,6 +170,12 @@ struct env_view {
 	int icons; /* 1: the manipulation icons, balance and goals */
 	int tint;  /* enum env_tint: the humans' parts coloured by an assessment's part scores */
 	int loads_hidden; /* 1: the loads' arrows not drawn (set view VIEW loads=off); 0 drawn */
+	/* a view through a figure's eyes (eyeview.h): eye, target and fovy_deg follow them */
+	char eyes[MODEL_NAME_MAX]; /* the figure's name; "": a camera of its own */
+	int eyes_which;            /* enum env_eyes */
+	double hfov_deg;           /* horizontal field of view, degrees, kept as given */
+	double cones_deg[ENV_VIEW_CONES]; /* an eye view's marked cones: full angles, degrees */
+	int ncones;                /* how many are marked; 0: none */
 };
 
 struct env {
