@@ -262,7 +262,7 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	}
 	c.result = json_object();
 	int rc = e->fn(&c);
-	if (rc == 0 && checkpoint) {
+	if (rc == 0 && checkpoint && !c.unchanged) {
 		daemon_checkpoints_push(&d->undo, before, before_len);
 		daemon_checkpoints_clear(&d->redo);
 		before = NULL;

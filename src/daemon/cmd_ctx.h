@@ -22,6 +22,7 @@ struct cmd_ctx {
 	const char *code; /* error code when a handler fails */
 	char msg[512];
 	int quit;         /* the client asked to close */
+	int unchanged;    /* a mutating command that, this time, changed nothing: no undo step */
 };
 
 /* every handler of proto/commands.def: 0, or cmd_fail(...) */

@@ -99,6 +99,7 @@ static const struct group_key group_table[] = {
 
 	{ "assess", NULL, G_ERGONOMICS },
 	{ "can", "reach", G_ERGONOMICS },
+	{ "reach", "", G_ERGONOMICS },
 	{ "add", "load", G_ERGONOMICS },
 	{ "list", "loads", G_ERGONOMICS },
 	{ "delete", "load", G_ERGONOMICS },

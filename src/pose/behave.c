@@ -315,11 +315,11 @@ set_root(struct behave *b, const struct model *m, struct state *s, struct ik *ik
 	b->root = r;
 }
 
-int
-behave_attach(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
-	      const struct behave_params *p)
+/* behave_attach's work on a zeroed b that may already carry its weights */
+static int
+attach(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
+       const struct behave_params *p)
 {
-	memset(b, 0, sizeof *b);
 	b->p = p ? *p : behave_default_params();
 	if (behave_find_sites(b, m) < 0)
 		return -1;
@@ -340,7 +340,9 @@ behave_attach(struct behave *b, const struct model *m, struct state *s, struct i
 	b->bal_x = b->bal.x;
 	b->bal_z = b->bal.z;
 	memcpy(b->bal_point, b->bal.point, sizeof b->bal_point);
-	b->elevation = s->com[1];
+	double com[3];
+	behave_com(b, s, com); /* with the weights carried */
+	b->elevation = com[1];
 	d = ik_constraint_default_def();
 	d.effector_site = b->s_lower;
 	d.com_effector = 1;
@@ -369,10 +371,35 @@ behave_attach(struct behave *b, const struct model *m, struct state *s, struct i
 		hand_def(b, m, s, k, &d);
 		b->c_hand[k] = ik_add(ik, m, &d);
 	}
-	memcpy(b->com_fixed, s->com, sizeof b->com_fixed);
+	memcpy(b->com_fixed, com, sizeof b->com_fixed);
 	if (b->c_hand[1] < 0 || stance_limit_springs(ik, m, b->p.spring_angle, STANCE_SPRING_WEIGHT) < 0)
 		return -1;
 	behave_keep_constraints(b, ik);
+	return 0;
+}
+
+int
+behave_attach(struct behave *b, const struct model *m, struct state *s, struct ik *ik,
+	      const struct behave_params *p)
+{
+	memset(b, 0, sizeof *b);
+	return attach(b, m, s, ik, p);
+}
+
+int
+behave_hold_posture(struct behave *b, const struct model *m, struct state *s, struct ik *ik)
+{
+	struct behave_params p = b->p;
+	struct point_mass pm[POINT_MASS_MAX];
+	int n = b->nmass, steps = b->steps_taken;
+	memcpy(pm, b->mass, sizeof pm);
+	memset(b, 0, sizeof *b);
+	memcpy(b->mass, pm, sizeof pm);
+	b->nmass = n;
+	if (attach(b, m, s, ik, &p) < 0)
+		return -1;
+	b->steps_taken = steps;
+	behave_set_params(b, m, s, ik, &p); /* seated: the root and the seat's balance */
 	return 0;
 }
 

@@ -131,6 +131,15 @@ int behave_attach(struct behave *b, const struct model *m, struct state *s, stru
 		  const struct behave_params *p);
 
 /*
+ * A posture put on the figure from outside (a reach taken): the behaviours
+ * attached again on ik, emptied of their constraints by the caller, holding
+ * the posture s as it now is (feet, balance point, pelvis, torso, hands),
+ * with the same parameters, weights and steps taken, so the next frame does
+ * not pull the body back. Returns 0, or -1 as behave_attach.
+ */
+int behave_hold_posture(struct behave *b, const struct model *m, struct state *s, struct ik *ik);
+
+/*
  * One frame: passive and active behaviours update the constraints, then
  * the ik solves (with opt and clock) and the balance is measured again.
  * The solve is the frame's only use of the clock, so the result's work,

@@ -114,3 +114,119 @@ def test_bad_requests_are_refused_and_change_nothing(daemon):
                 c.request(req)
         assert c.request("status")["posture"] == h0
         assert c.request("help")  # it still serves
+
+
+# ---- reach: the solved posture taken --------------------------------------------------------
+
+def xyz(p):
+    return ",".join(f"{x:.6f}" for x in p)
+
+
+def test_reach_takes_the_posture_and_undo_gives_the_old_one_back(daemon):
+    """A behaving figure's body reach: the palm is on the target after the reply and stays
+    there through frames (the behaviours hold the new posture, not the old goals); one undo
+    gives back the old posture exactly (posture hash and every joint)."""
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request("behave jack on")
+        c.request("settle frames=50")
+        h0 = c.request("status")["posture"]
+        p0 = c.request("get posture jack")
+        sh = shoulder(c, "jack")
+        t = [sh[0], 0.3, sh[2] + 0.4]  # low in front: the arm alone does not reach it
+        v = c.request(f"reach jack hand=right {xyz(t)} mode=body")
+        assert v["reached"] and v["applied"]
+        assert set(v) >= {"distance", "posture", "limiting", "margin", "mode"}
+        assert math.dist(palm(c, "jack")[0], t) <= TOL_POS
+        got = c.request("get posture jack")["posture"]
+        assert set(got) == set(v["posture"])
+        for j, vals in v["posture"].items():
+            assert got[j] == pytest.approx(vals, abs=1e-9), j
+        c.request("settle frames=300")
+        assert math.dist(palm(c, "jack")[0], t) <= TOL_POS
+        assert c.request("status")["posture"] != h0
+        c.request("undo")
+        assert c.request("status")["posture"] == h0
+        assert c.request("get posture jack") == p0
+
+
+def test_reach_on_a_figure_without_behaviours(daemon):
+    """mode=arm on a figure without behaviours: the arm is placed, the palm on the target,
+    and its root site is kept (a later set joint moves what it moved before)."""
+    with daemon.client() as c:
+        c.request("load human as jill")
+        root = c.request("get posture jill")
+        sh = shoulder(c, "jill")
+        t = [sh[0], sh[1], sh[2] + 0.45]
+        v = c.request(f"reach jill hand=right {xyz(t)} mode=arm")
+        assert v["reached"] and v["applied"]
+        assert math.dist(palm(c, "jill")[0], t) <= TOL_POS
+        c.request("settle frames=50")
+        assert math.dist(palm(c, "jill")[0], t) <= TOL_POS
+        assert set(c.request("get posture jill")["posture"]) == set(root["posture"])
+
+
+def test_an_unreached_target_is_not_taken_unless_nearest(daemon):
+    """Out of reach: the reply says so, nothing changes and it is no undo step (undo takes
+    back the change before it); with nearest=yes the nearest posture is taken."""
+    with daemon.client() as c:
+        c.request("load human as jack")
+        h0 = c.request("status")["posture"]
+        c.request("set joint jack elbow_l 40deg")
+        h1 = c.request("status")["posture"]
+        sh = shoulder(c, "jack")
+        far = [sh[0], sh[1], sh[2] + 0.9]
+        v = c.request(f"reach jack hand=right {xyz(far)} mode=arm")
+        assert not v["reached"] and not v["applied"]
+        assert v["distance"] > 0.1
+        assert c.request("status")["posture"] == h1
+        c.request("undo")  # the elbow's, not the reach's
+        assert c.request("status")["posture"] == h0
+        v = c.request(f"reach jack hand=right {xyz(far)} mode=arm nearest=yes")
+        assert not v["reached"] and v["applied"]
+        assert math.dist(palm(c, "jack")[0], far) == pytest.approx(v["distance"], abs=1e-6)
+        assert c.request("status")["posture"] != h0
+
+
+def test_reach_is_journaled():
+    """kill -9 after a reach: the restart gives back the reached posture."""
+    d = Daemon()
+    try:
+        d.start()
+        with d.client() as c:
+            c.request("load human as jack")
+            sh = shoulder(c, "jack")
+            t = [sh[0] - 0.2, sh[1] - 0.2, sh[2] + 0.35]
+            assert c.request(f"reach jack hand=right {xyz(t)} mode=torso")["applied"]
+            h = c.request("status")["posture"]
+            p = c.request("get posture jack")
+        d.restart()
+        with d.client() as c:
+            assert c.request("get posture jack") == p
+            assert c.request("status")["posture"] == h
+            assert math.dist(palm(c, "jack")[0], t) <= TOL_POS
+    finally:
+        d.kill9()
+        d.cleanup()
+
+
+def test_bad_reach_requests_change_nothing(daemon):
+    with daemon.client() as c:
+        c.request("load human as jack")
+        c.request("set joint jack elbow_l 40deg")
+        h0 = c.request("status")["posture"]
+        bad = ["reach jack hand=middle 0.2,1.2,0.4",
+               "reach jack hand=right 0.2,1.2",
+               "reach jack hand=right 0.2,nan,0.4",
+               "reach jack hand=right 0.2,1.2,0.4 mode=fly",
+               "reach jack hand=right 0.2,1.2,0.4 mode=arm balance=on",
+               "reach jack hand=right 0.2,1.2,0.4 nearest=maybe",
+               "reach jack 0.2,1.2,0.4",
+               "reach nobody hand=right 0.2,1.2,0.4",
+               "can reach jack hand=right 0.2,1.2,0.4 nearest=yes"]
+        for req in bad:
+            with pytest.raises(PostureError):
+                c.request(req)
+        assert c.request("status")["posture"] == h0
+        c.request("undo")  # the elbow's: the refusals made no undo step
+        assert c.request("status")["posture"] != h0
