@@ -14,7 +14,7 @@
  * figure at rest while someone subscribes), and a loads event's summary
  * written into a buffer made once. Prints the median and 95th percentile
  * over the frames, per manikin and per family:
- *   BENCH loads.live us=... p95_us=... family_us=... family_p95_us=...
+ *   BENCH loads.frame us=... p95_us=... family_us=... family_p95_us=...
  *         cached_us=... event_us=... manikins=17
  */
 #include <stdio.h>
@@ -123,7 +123,7 @@ main(void)
 		return 1;
 	}
 	double fam = bench_percentile(live, FRAMES, 0.5), fam95 = bench_percentile(live, FRAMES, 0.95);
-	printf("BENCH loads.live us=%.2f p95_us=%.2f family_us=%.1f family_p95_us=%.1f "
+	printf("BENCH loads.frame us=%.2f p95_us=%.2f family_us=%.1f family_p95_us=%.1f "
 	       "cached_us=%.3f event_us=%.2f manikins=%d\n",
 	       fam / N, fam95 / N, fam, fam95, bench_percentile(cached, FRAMES, 0.5) / N,
 	       bench_percentile(event, FRAMES, 0.5) / N, N);
