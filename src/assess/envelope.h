@@ -1,0 +1,100 @@
+/*
+ * envelope.h - reach envelopes (§6.1's reach): the closed surface of the
+ * points a hand's palm can reach, computed by the solver itself (pose/reach.h)
+ * so that it includes what the body does to reach: the arm alone, the spine
+ * too, or the whole body bending and squatting with its feet planted and
+ * balance held.
+ *
+ * The surface is marching cubes over a reachability field on a regular grid
+ * of the request's resolution: at a grid point, the distance from the point
+ * to where reach_solve's palm ends up (0 inside: reached). Outside, that is
+ * the distance to the reachable set, so the surface is placed at a small
+ * iso-distance from it and every vertex is reachable within the solver's
+ * tolerance. The mesh is closed and consistently oriented (outward normals),
+ * its volume by the divergence theorem.
+ *
+ * The comfort zone is the same surface with the moved joints held within
+ * their comfort ranges (envelope_comfort_default says which and cites each).
+ *
+ * Computing allocates; it is an analysis run on request, not in the frame
+ * loop. It runs on req.threads threads (0: every core) and changes nothing
+ * it is given.
+ */
+#ifndef POSTURE_ENVELOPE_H
+#define POSTURE_ENVELOPE_H
+
+#include <stddef.h>
+
+#include "figure/model.h"
+#include "figure/state.h"
+#include "pose/behave.h"
+#include "pose/point_mass.h"
+#include "pose/reach.h"
+
+#define ENVELOPE_RES_DEFAULT 0.02 /* m: the grid's step */
+#define ENVELOPE_RES_MIN 0.005
+#define ENVELOPE_RES_MAX 0.25
+
+/* a joint dof held within [lo, hi] degrees for the comfort zone */
+#define ENVELOPE_COMFORT_MAX 24
+struct envelope_comfort_range {
+	char joint[24]; /* the human's limb joint name without its side ("shoulder", "elbow"...),
+			   or a spine joint's name */
+	int dof;        /* the joint's dof index (0-based) */
+	double lo, hi;  /* degrees */
+};
+struct envelope_comfort {
+	int n;
+	struct envelope_comfort_range r[ENVELOPE_COMFORT_MAX];
+};
+
+/* the default comfort ranges (each cited in envelope_comfort.c) */
+void envelope_comfort_default(struct envelope_comfort *dest);
+/* the source of default range i, or NULL */
+const char *envelope_comfort_source(int i);
+
+struct envelope_request {
+	int side;             /* BEHAVE_LEFT or BEHAVE_RIGHT */
+	enum reach_mode mode; /* what may move (pose/reach.h) */
+	int balance;          /* REACH_BODY: balance held */
+	double resolution;    /* m: grid step, ENVELOPE_RES_MIN .. ENVELOPE_RES_MAX */
+	int comfort;          /* 1: the comfort zone as well */
+	struct envelope_comfort comfort_ranges; /* used when comfort is set */
+	int threads;          /* 0: every core */
+};
+
+/* a closed triangle mesh in world coordinates (metres) */
+struct envelope_mesh {
+	int nvert, ntri;
+	float *vert;   /* 3 nvert */
+	float *normal; /* 3 nvert, unit, outward */
+	int *tri;      /* 3 ntri, counter-clockwise seen from outside */
+	double volume; /* m^3 */
+	double lo[3], hi[3]; /* bounds; both 0 when empty */
+};
+
+struct envelope {
+	struct envelope_request req;
+	struct envelope_mesh reach;
+	struct envelope_mesh comfort; /* empty unless req.comfort */
+	int grid[3];                  /* grid points each way */
+	long solves;                  /* reach solves made */
+	double seconds;               /* wall time */
+};
+
+/*
+ * The envelope of human model m from the posture s (current frames; the
+ * posture the non-moving parts keep, and where the feet stand), with the
+ * behaviour parameters p (NULL: the defaults) and carried weights pm, n.
+ * Returns 0 with *dest filled (envelope_free it), or -1 with a message in
+ * err (not a human, bad request, out of memory).
+ */
+int envelope_compute(const struct model *m, const struct state *s, const struct behave_params *p,
+		     const struct point_mass *pm, int n, const struct envelope_request *req,
+		     struct envelope *dest, char *err, size_t errlen);
+void envelope_free(struct envelope *e);
+
+/* 1 when p lies inside the closed mesh (ray parity), else 0 */
+int envelope_mesh_contains(const struct envelope_mesh *mesh, const double p[3]);
+
+#endif
