@@ -204,7 +204,50 @@ cmd_set_camera(struct cmd_ctx *c)
 }
 
 /*
- * set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off] [cones=off|DEG,...]:
+ * sight=FIG|all|off [sight_length=LEN]: the manikins' sight cones drawn in
+ * the view (eyeview.h) into w, checked first; a length only with sight on.
+ * Returns 0, or -1 (w untouched) with the reply's error.
+ */
+static int
+read_sight(struct cmd_ctx *c, struct env_view *w)
+{
+	const char *sight = cmd_key(c, "sight"), *len = cmd_key(c, "sight_length");
+	const struct env *e = &c->d->env;
+	double l = w->sight[0] ? w->sight_len : EYEVIEW_SIGHT_LEN;
+	int fig = -1, sites[2];
+	if (!sight && !len)
+		return 0;
+	if (sight && strcmp(sight, "off") && strcmp(sight, EYEVIEW_SIGHT_ALL)) {
+		if ((fig = cmd_figure(c, sight)) < 0)
+			return -1;
+		if (eyeview_sites(e->fig[fig].model, ENV_EYES_BOTH, sites) < 0)
+			return cmd_fail(c, "bad-argument", "%s has no eyes (eyeball_l.gaze, eyeball_r.gaze)",
+					e->fig[fig].name);
+	}
+	int on = sight ? strcmp(sight, "off") != 0 : w->sight[0] != 0;
+	if (len && !on)
+		return cmd_fail(c, "bad-argument", "sight_length= draws sight cones: sight=FIG|all too");
+	if (len && (words_number(len, UNIT_LENGTH, &l) < 0 || l < EYEVIEW_SIGHT_LEN_MIN ||
+		    l > EYEVIEW_SIGHT_LEN_MAX))
+		return cmd_fail(c, "bad-number", "sight_length: a length from %g to %g m",
+				EYEVIEW_SIGHT_LEN_MIN, EYEVIEW_SIGHT_LEN_MAX);
+	if (sight)
+		snprintf(w->sight, sizeof w->sight, "%s", !on ? "" : fig >= 0 ? e->fig[fig].name : sight);
+	w->sight_len = on ? l : 0;
+	return 0;
+}
+
+/* a view's sight cones in a reply: what draws them and how long (null: none) */
+static void
+sight_reply(json_t *o, const struct env_view *v)
+{
+	json_object_set_new(o, "sight", json_string(v->sight[0] ? v->sight : "off"));
+	json_object_set_new(o, "sight_length", v->sight[0] ? json_real(v->sight_len) : json_null());
+}
+
+/*
+ * set view VIEW [tint=rula|reba|owas|strength|off] [loads=on|off] [cones=off|DEG,...]
+ * [sight=FIG|all|off] [sight_length=LEN]:
  * the humans in the view coloured by that assessment's part scores
  * (view_tint.h), or in their own colours; the loads on the figures drawn as
  * arrows, or not; an eye view's cones marked about the line of sight
@@ -212,9 +255,9 @@ cmd_set_camera(struct cmd_ctx *c)
 int
 cmd_set_view(struct cmd_ctx *c)
 {
-	static const char *const keys[] = { "tint", "loads", "cones" };
+	static const char *const keys[] = { "tint", "loads", "cones", "sight", "sight_length" };
 	int v = view_of(c, c->argv[0]);
-	if (v < 0 || only_keys(c, 1, keys, 3) < 0)
+	if (v < 0 || only_keys(c, 1, keys, 5) < 0)
 		return -1;
 	const char *tint = cmd_key(c, "tint"), *loads = cmd_key(c, "loads");
 	const char *cones = cmd_key(c, "cones");
@@ -222,9 +265,13 @@ cmd_set_view(struct cmd_ctx *c)
 	struct env_view *w = &c->d->env.view[v];
 	double deg[ENV_VIEW_CONES];
 	int ncones = 0;
-	if (!tint && !loads && !cones)
+	struct env_view sighted = *w; /* the sight read first, taken only when all is well */
+	if (!tint && !loads && !cones && !cmd_key(c, "sight") && !cmd_key(c, "sight_length"))
 		return cmd_fail(c, "arity", "set view VIEW [tint=rula|reba|owas|strength|off] "
-					    "[loads=on|off] [cones=off|DEG,...]");
+					    "[loads=on|off] [cones=off|DEG,...] [sight=FIG|all|off] "
+					    "[sight_length=LEN]");
+	if (read_sight(c, &sighted) < 0)
+		return -1;
 	if (tint && t < 0)
 		return cmd_fail(c, "bad-argument", "tint=rula|reba|owas|strength|off, not '%.40s'", tint);
 	if (loads && strcmp(loads, "on") && strcmp(loads, "off"))
@@ -235,6 +282,8 @@ cmd_set_view(struct cmd_ctx *c)
 		return cmd_fail(c, "bad-argument", "cones=off or 1 to %d full angles from %g to %g "
 				"degrees, e.g. 3,20,40,60", ENV_VIEW_CONES, EYEVIEW_CONE_MIN,
 				EYEVIEW_CONE_MAX);
+	memcpy(w->sight, sighted.sight, sizeof w->sight);
+	w->sight_len = sighted.sight_len;
 	if (tint)
 		w->tint = t;
 	if (loads)
@@ -249,6 +298,7 @@ cmd_set_view(struct cmd_ctx *c)
 	json_object_set_new(c->result, "loads", json_string(w->loads_hidden ? "off" : "on"));
 	if (w->eyes[0])
 		json_object_set_new(c->result, "cones", cmd_vec(w->cones_deg, w->ncones));
+	sight_reply(c->result, w);
 	return 0;
 }
 
@@ -356,6 +406,8 @@ cmd_list_views(struct cmd_ctx *c)
 		json_object_set_new(o, "icons", json_boolean(v->icons));
 		json_object_set_new(o, "tint", json_string(env_tint_str(v->tint)));
 		json_object_set_new(o, "loads", json_string(v->loads_hidden ? "off" : "on"));
+		if (v->sight[0]) /* only when drawn: a view's list reads as before without */
+			sight_reply(o, v);
 		if (v->eyes[0]) {
 			json_object_set_new(o, "eyes", json_string(v->eyes));
 			json_object_set_new(o, "which", json_string(eyeview_which_str(v->eyes_which)));

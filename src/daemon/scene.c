@@ -315,6 +315,23 @@ add_loads(struct drawlist *dl, const struct env *e, int fig)
 	}
 }
 
+/* the manikins' sight as cones from their eyes, where the eyes are now (set view sight=) */
+static void
+add_sight(struct drawlist *dl, const struct daemon *d, const struct env_view *vw)
+{
+	const struct env *e = &d->env;
+	if (!vw->sight[0])
+		return;
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		double eye[3], dir[3], deg[ENV_VIEW_CONES];
+		if (!eyeview_draws_sight(e, vw, i) || daemon_is_ghost(d, i) ||
+		    eyeview_camera(e, i, ENV_EYES_BOTH, eye, dir) < 0)
+			continue;
+		int n = eyeview_figure_cones(e, i, deg);
+		view_add_sight_cones(dl, eye, dir, deg, n, vw->sight_len);
+	}
+}
+
 int
 scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
 	   size_t errlen)
@@ -361,6 +378,7 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 	}
 	if (vw->eyes[0]) /* the cones about the line of sight (eyeview.h) */
 		view_add_cone_marks(sc->dl, vw->cones_deg, vw->ncones);
+	add_sight(sc->dl, d, vw);
 	if (manipulating)
 		scene_add_manip(sc->dl, ia);
 	add_hover(sc, d);

@@ -231,6 +231,8 @@ session_write_with(const struct env *e, const struct assess_config *cfg, FILE *f
 			for (int k = 0; k < v->ncones; k++)
 				fprintf(f, "%s%.17g", k ? "," : "", v->cones_deg[k]);
 		}
+		if (v->sight[0]) /* likewise: only a view drawing sight cones */
+			fprintf(f, " sight=%s sight_length=%.17g", v->sight, v->sight_len);
 		fprintf(f, "\n");
 	}
 	if (e->nlayout) {
@@ -718,9 +720,10 @@ read_attach(struct reader *r, struct env *e)
 
 /*
  * "view NAME width= height= icons= eye= target= [fovy=] [tint=] [loads=off]
- * [eyes=FIG which= hfov= [cones=]]": fovy (degrees), tint (an assessment's colours,
- * off when absent), loads (the loads' arrows, on when absent) and the eye
- * view's three (a camera of its own when absent) came later
+ * [eyes=FIG which= hfov= [cones=]] [sight=FIG|all sight_length=M]": fovy (degrees),
+ * tint (an assessment's colours, off when absent), loads (the loads' arrows, on when
+ * absent), the eye view's three (a camera of its own when absent) and the sight
+ * cones (none when absent) came later
  */
 static int
 read_view(struct reader *r, struct env *e)
@@ -751,8 +754,16 @@ read_view(struct reader *r, struct env *e)
 			    ENV_VIEW_CONES);
 	for (int k = v.ncones; k < ENV_VIEW_CONES; k++)
 		v.cones_deg[k] = 0;
+	const char *sight = arg(w, 2, "sight"), *sight_len = arg(w, 2, "sight_length");
+	if (sight && (!sight_len || !words_is_name(sight) ||
+		      words_number(sight_len, UNIT_NONE, &v.sight_len) < 0 ||
+		      v.sight_len < EYEVIEW_SIGHT_LEN_MIN || v.sight_len > EYEVIEW_SIGHT_LEN_MAX))
+		return fail(r, "view %s: sight=FIG|all sight_length=%g..%g", w->w[1],
+			    EYEVIEW_SIGHT_LEN_MIN, EYEVIEW_SIGHT_LEN_MAX);
+	if (sight)
+		snprintf(v.sight, sizeof v.sight, "%s", sight);
 	if (w->n != 7 + (fovy != NULL) + (tint != NULL) + (loads != NULL) + 3 * (eyes != NULL) +
-			    (cones != NULL) ||
+			    (cones != NULL) + 2 * (sight != NULL) ||
 	    !words_is_name(w->w[1]) ||
 	    env_find_view(e, w->w[1]) >= 0 ||
 	    read_uint(arg(w, 2, "width"), 16384, &wd) < 0 || wd < 16 ||
@@ -764,7 +775,8 @@ read_view(struct reader *r, struct env *e)
 		      v.fovy_deg < ENV_VIEW_FOVY_MIN || v.fovy_deg > ENV_VIEW_FOVY_MAX)))
 		return fail(r, "expected: view NAME width=W height=H icons=0|1 eye=X,Y,Z target=X,Y,Z "
 			       "[fovy=DEG] [tint=rula|reba|owas|strength|off] [loads=on|off] "
-			       "[eyes=FIG which=left|right|both hfov=DEG [cones=off|DEG,...]]");
+			       "[eyes=FIG which=left|right|both hfov=DEG [cones=off|DEG,...]] "
+			       "[sight=FIG|all sight_length=M]");
 	snprintf(v.name, sizeof v.name, "%s", w->w[1]);
 	v.width = (int)wd;
 	v.height = (int)ht;

@@ -356,6 +356,18 @@ int view_add_balance(struct drawlist *dl, const struct model *m, const struct st
 #define VIEW_CONE_SEGMENTS 128 /* straight pieces of a cone's circle */
 void view_add_cone_marks(struct drawlist *dl, const double *deg, int n);
 
+/*
+ * A manikin's sight in another view (eyeview.h; Process Simulate's vision
+ * envelope, research file §6.2): for each full angle deg[i] (degrees) a
+ * translucent cone with its apex at eye about the line of sight dir
+ * (unit), its sides length long (the rim at that range from the eye, at
+ * deg[i] / 2 from dir), filled and its rim drawn, in the colour of its
+ * rank as view_add_cone_marks'. Nothing for a zero or non-finite dir.
+ */
+#define VIEW_SIGHT_SEGMENTS 32 /* triangles of a sight cone's side */
+void view_add_sight_cones(struct drawlist *dl, const double eye[3], const double dir[3],
+			  const double *deg, int n, double length);
+
 /* an external load's arrow: this long per newton of force, within these lengths (m) */
 #define VIEW_LOAD_M_PER_N 0.002 /* 2 mm a newton: a 15 kg weight's 147 N, 29 cm */
 #define VIEW_LOAD_LEN_MIN 0.05  /* so that a small force still shows */

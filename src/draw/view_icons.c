@@ -449,12 +449,45 @@ torque_ring(struct drawlist *dl, const double p[3], const double axis[3])
 	}
 }
 
+/* the cones' colours by rank: the central spot red, then yellow, green, blue */
+static const uint8_t C_CONE[4][4] = {
+	{ 235, 60, 50, 255 }, { 245, 200, 20, 255 }, { 40, 190, 80, 255 }, { 50, 140, 245, 255 }
+};
+#define SIGHT_FILL_ALPHA 50 /* a sight cone's side: four nested still let the scene through */
+
+void
+view_add_sight_cones(struct drawlist *dl, const double eye[3], const double dir[3],
+		     const double *deg, int n, double length)
+{
+	double d[3], u[3], v[3];
+	uint8_t fill[4];
+	if (!(v_unit(dir, d) > 0) || !isfinite(d[0] + d[1] + d[2]))
+		return;
+	v_perp(d, u);
+	v_cross(d, u, v);
+	for (int i = 0; i < n; i++) {
+		/* the rim: at half the full angle from the line of sight, length from the eye */
+		double h = deg[i] * M_PI / 360, ax = length * cos(h), rad = length * sin(h);
+		double rim[VIEW_SIGHT_SEGMENTS][3];
+		for (int k = 0; k < VIEW_SIGHT_SEGMENTS; k++) {
+			double t = 2 * M_PI * k / VIEW_SIGHT_SEGMENTS, c = cos(t), s = sin(t);
+			for (int j = 0; j < 3; j++)
+				rim[k][j] = eye[j] + ax * d[j] + rad * (c * u[j] + s * v[j]);
+		}
+		view_batch_begin(dl, VIEW_TRIANGLES, VIEW_WORLD, 1, 0);
+		for (int k = 0; k < VIEW_SIGHT_SEGMENTS; k++)
+			view_triangle(dl, eye, rim[k], rim[(k + 1) % VIEW_SIGHT_SEGMENTS],
+				      with_alpha(C_CONE[i & 3], SIGHT_FILL_ALPHA, fill));
+		view_batch_begin(dl, VIEW_LINES, VIEW_WORLD, ICON_WIDTH, 1);
+		for (int k = 0; k < VIEW_SIGHT_SEGMENTS; k++)
+			view_line(dl, rim[k], rim[(k + 1) % VIEW_SIGHT_SEGMENTS], C_CONE[i & 3]);
+	}
+}
+
 void
 view_add_cone_marks(struct drawlist *dl, const double *deg, int n)
 {
-	static const uint8_t rgba[4][4] = {
-		{ 235, 60, 50, 255 }, { 245, 200, 20, 255 }, { 40, 190, 80, 255 }, { 50, 140, 245, 255 }
-	};
+	const uint8_t (*rgba)[4] = C_CONE;
 	double cx = dl->width / 2.0, cy = dl->height / 2.0;
 	double f = cy / tan(dl->cam.fovy / 2); /* pixels per unit of tan of the angle off the axis */
 	view_batch_begin(dl, VIEW_LINES, VIEW_SCREEN, 1.5f, 0);

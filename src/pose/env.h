@@ -176,6 +176,10 @@ struct env_view {
 	double hfov_deg;           /* horizontal field of view, degrees, kept as given */
 	double cones_deg[ENV_VIEW_CONES]; /* an eye view's marked cones: full angles, degrees */
 	int ncones;                /* how many are marked; 0: none */
+	/* manikins' lines of sight drawn as cones from their eyes (eyeview.h): "" none,
+	 * "all" every figure with eyes, else a figure's name */
+	char sight[MODEL_NAME_MAX];
+	double sight_len; /* m: the cones' sides, from the eye to the rim (set while sight is) */
 };
 
 struct env {

@@ -133,3 +133,25 @@ eyeview_follow_all(struct env *e)
 	for (int i = 0; i < ENV_MAX_VIEWS; i++)
 		eyeview_follow(e, &e->view[i]);
 }
+
+int
+eyeview_figure_cones(const struct env *e, int fig, double dest[ENV_VIEW_CONES])
+{
+	for (int i = 0; i < ENV_MAX_VIEWS; i++) {
+		const struct env_view *v = &e->view[i];
+		if (v->used && v->eyes[0] && !strcmp(v->eyes, e->fig[fig].name)) {
+			memcpy(dest, v->cones_deg, sizeof v->cones_deg);
+			return v->ncones;
+		}
+	}
+	return eyeview_default_cones(dest);
+}
+
+int
+eyeview_draws_sight(const struct env *e, const struct env_view *v, int fig)
+{
+	const struct env_figure *f = &e->fig[fig];
+	if (!v->used || !v->sight[0] || !f->gen || (v->eyes[0] && !strcmp(v->eyes, f->name)))
+		return 0;
+	return !strcmp(v->sight, EYEVIEW_SIGHT_ALL) || !strcmp(v->sight, f->name);
+}

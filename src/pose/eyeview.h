@@ -35,6 +35,29 @@
 #define EYEVIEW_CONE_MIN 0.5   /* a marked cone's full angle at least, degrees */
 #define EYEVIEW_CONE_MAX 170.0 /* and at most */
 
+/*
+ * Sight cones drawn in other views (set view VIEW sight=FIG|all|off): from
+ * the cyclopean eye along the mean line of sight, each cone's sides this
+ * long, so its rim lies at that range from the eye. Process Simulate's
+ * vision envelope is a cone to a maximum range set by the user (research
+ * file §6.2, no default published); 1 m is the farther of Hill & Kroemer's
+ * two viewing distances (0.5 and 1.0 m, §6.2), a workplace's arm's length
+ * and more. At least the eye views' near plane (5 cm: shorter lies inside
+ * the head), at most 20 m (a hall).
+ */
+#define EYEVIEW_SIGHT_LEN 1.0
+#define EYEVIEW_SIGHT_LEN_MIN 0.05
+#define EYEVIEW_SIGHT_LEN_MAX 20.0
+#define EYEVIEW_SIGHT_ALL "all" /* sight=all: every figure with eyes */
+
+/*
+ * The cones figure fig's sight is drawn with: those of the first eye view
+ * through its eyes (env_view.eyes), else the defaults. Returns how many.
+ */
+int eyeview_figure_cones(const struct env *e, int fig, double dest[ENV_VIEW_CONES]);
+/* 1 when view v draws figure fig's sight cones (not in fig's own eye view: it marks them) */
+int eyeview_draws_sight(const struct env *e, const struct env_view *v, int fig);
+
 /* the default cones into dest (ENV_VIEW_CONES of them); returns how many */
 int eyeview_default_cones(double dest[ENV_VIEW_CONES]);
 /*
