@@ -23,6 +23,8 @@
 #include "daemon/populations.h"
 
 struct kms_times_summary; /* draw/kms_pick.h */
+struct camera;            /* draw/view.h */
+struct hemi_map;          /* draw/hemi.h */
 struct assess_live;       /* daemon/assess_live.h */
 struct loads_live;        /* daemon/loads_live.h */
 
@@ -124,6 +126,16 @@ struct daemon {
 	int (*input_latencies)(struct daemon *d, uint64_t *dest, int max);
 	/* the KMS screen's render-to-flip times (draw/kms_pick.h): 0, or -1: no KMS screen */
 	int (*flip_times)(struct daemon *d, struct kms_times_summary *dest);
+	/*
+	 * An id map (draw/hemi.h, HEMI_N square) through cam, any field of view,
+	 * into the scene's map slot 0 or 1 (valid until that slot is drawn again):
+	 * every figure but the ghosts, or figure only alone (-1: every one), with
+	 * figure skip's segments whose skip_seg[seg] is set left out (NULL: none).
+	 * NULL with err when there is no renderer.
+	 */
+	const struct hemi_map *(*id_map)(struct daemon *d, const struct camera *cam, int slot,
+					 int only, int skip, const unsigned char *skip_seg, char *err,
+					 size_t errlen);
 	/* the kiosk's screen now, as the framebuffer shows it (a layout's views tiled) */
 	int (*render_screen)(struct daemon *d, const struct frame **dest, char *err, size_t errlen);
 	/*

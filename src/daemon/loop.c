@@ -150,6 +150,14 @@ render_view(struct daemon *d, int v, const struct frame **dest, char *err, size_
 	return scene_draw(&L->scene, d, v, dest, err, errlen);
 }
 
+static const struct hemi_map *
+id_map(struct daemon *d, const struct camera *cam, int slot, int only, int skip,
+       const unsigned char *skip_seg, char *err, size_t errlen)
+{
+	struct loop *L = d->loop;
+	return scene_id_map(&L->scene, d, cam, slot, only, skip, skip_seg, err, errlen);
+}
+
 static int
 render_picture(struct daemon *d, const struct env_view *v, int fig, const struct frame **dest,
 	       char *err, size_t errlen)
@@ -601,6 +609,7 @@ loop_setup(struct loop *L, const struct loop_config *cfg)
 	L->d.render_view = render_view;
 	L->d.render_screen = render_screen;
 	L->d.render_picture = render_picture;
+	L->d.id_map = id_map;
 	L->d.calendar_s = calendar_s;
 	L->d.input_latencies = input_latencies;
 	L->d.flip_times = flip_times;

@@ -43,11 +43,17 @@ scene_ready(struct scene *sc, char *err, size_t errlen)
 	sc->r = render_make(&rd, err, errlen);
 	sc->dl = sc->r ? view_drawlist_make() : NULL;
 	sc->hemi = sc->r ? malloc(sizeof *sc->hemi) : NULL;
-	if (!sc->r || !sc->dl || !sc->hemi) {
-		if (sc->r && (!sc->dl || !sc->hemi))
+	for (int k = 0; k < 2; k++)
+		sc->idmap[k] = sc->r ? malloc(sizeof *sc->idmap[k]) : NULL;
+	if (!sc->r || !sc->dl || !sc->hemi || !sc->idmap[0] || !sc->idmap[1]) {
+		if (sc->r)
 			snprintf(err, errlen, "out of memory");
 		view_drawlist_free(sc->dl);
 		free(sc->hemi);
+		for (int k = 0; k < 2; k++) {
+			free(sc->idmap[k]);
+			sc->idmap[k] = NULL;
+		}
 		sc->dl = NULL;
 		sc->hemi = NULL;
 		fprintf(stderr, "postured: no pictures: %s\n", err);
@@ -146,6 +152,33 @@ scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3], const
 		return NULL;
 	}
 	return sc->hemi;
+}
+
+const struct hemi_map *
+scene_id_map(struct scene *sc, struct daemon *d, const struct camera *cam, int slot, int only,
+	     int skip, const unsigned char *skip_seg, char *err, size_t errlen)
+{
+	struct env *e = &d->env;
+	if (scene_ready(sc, err, errlen) < 0)
+		return NULL;
+	view_begin(sc->dl, cam, HEMI_N, HEMI_N);
+	for (int i = 0; i < ENV_MAX_FIGURES; i++) {
+		struct env_figure *f = &e->fig[i];
+		if (!f->gen || (only >= 0 && i != only) || daemon_is_ghost(d, i))
+			continue;
+		figure_meshes(sc, f, i);
+		view_add_figure_ids_except(sc->dl, f->model, f->state, sc->mesh_base[i], i,
+					   i == skip ? skip_seg : NULL);
+	}
+	if (sc->dl->dropped) {
+		snprintf(err, errlen, "the scene has more than %d geometry parts", VIEW_MAX_INST);
+		return NULL;
+	}
+	if (render_hemicube(sc->r, sc->dl, sc->idmap[slot & 1]) < 0) {
+		snprintf(err, errlen, "render_hemicube failed");
+		return NULL;
+	}
+	return sc->idmap[slot & 1];
 }
 
 /*
@@ -833,5 +866,7 @@ scene_free(struct scene *sc)
 	view_drawlist_free(sc->dl);
 	free(sc->screen_rgba);
 	free(sc->hemi);
+	free(sc->idmap[0]);
+	free(sc->idmap[1]);
 	render_free(sc->r);
 }

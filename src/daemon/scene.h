@@ -43,6 +43,7 @@ struct scene {
 	int failed;       /* OSMesa could not start: no pictures */
 	struct drawlist *dl;
 	struct hemi_map *hemi; /* §3.7.1's visibility map, made with the renderer */
+	struct hemi_map *idmap[2]; /* analyze visibility's two maps (scene_id_map), made with it */
 	int mesh_base[ENV_MAX_FIGURES]; /* each figure's meshes in the renderer */
 	uint32_t mesh_gen[ENV_MAX_FIGURES];
 	const char *frames_dir; /* NULL: no frame files */
@@ -130,6 +131,16 @@ int scene_draw_screen(struct scene *sc, struct daemon *d, const struct frame **d
  * is set are left out, or the whole figure when skip_seg is NULL. Returns
  * it, or NULL with err when there is no renderer or no direction.
  */
+/*
+ * An id map through cam (HEMI_N square, any field of view) into map slot
+ * (0 or 1): every figure but the ghosts, or figure only alone (-1: all),
+ * figure skip's segments whose skip_seg is set left out (NULL: none).
+ * NULL with err when there is no renderer. Allocates nothing once ready.
+ */
+const struct hemi_map *scene_id_map(struct scene *sc, struct daemon *d, const struct camera *cam,
+				    int slot, int only, int skip, const unsigned char *skip_seg,
+				    char *err, size_t errlen);
+
 const struct hemi_map *scene_hemicube(struct scene *sc, struct daemon *d, const double origin[3],
 				      const double dir[3], int skip, const unsigned char *skip_seg,
 				      char *err, size_t errlen);
