@@ -298,7 +298,8 @@ cmd_set_view(struct cmd_ctx *c)
 	json_object_set_new(c->result, "loads", json_string(w->loads_hidden ? "off" : "on"));
 	if (w->eyes[0])
 		json_object_set_new(c->result, "cones", cmd_vec(w->cones_deg, w->ncones));
-	sight_reply(c->result, w);
+	if (w->sight[0] || cmd_key(c, "sight") || cmd_key(c, "sight_length"))
+		sight_reply(c->result, w); /* as cones: only where it concerns the view */
 	return 0;
 }
 

@@ -110,6 +110,14 @@ def test_the_cones_are_drawn_from_the_eyes_and_follow_the_head(daemon):
     with daemon.client() as c:
         c.request("load human as jack")
         c.request(f"add view side {SIDE}")
+        # the projection here is the view's: a point along the mouse line of a pixel
+        # projects back onto that pixel
+        for px, py in ((40, 30), (160, 120), (300, 190)):
+            m = c.request(f"pick side {px} {py}")
+            p = np.array(m["origin"]) + 2.5 * np.array(m["direction"])
+            assert np.abs(project([p])[0] - [px, py]).max() < 1e-6
+        # a view that draws no sight says nothing of it
+        assert "sight" not in c.request("set view side loads=on")
         r = c.request("set view side sight=jack")
         assert (r["sight"], r["sight_length"]) == ("jack", 1.0)
         first = assert_cone_where_the_eyes_look(c, 1.0)
