@@ -121,20 +121,22 @@ test_boxes_apart(void **st)
 	struct collide_mesh *a = box(0.5, 0.5, 0.5), *b = box(0.5, 0.5, 0.5);
 	struct xform xa = at(0, 0, 0, 0), xb = at(1.5, 0.2, -0.1, 0);
 	struct collide_result r;
-	assert_int_equal(collide_distance(a, &xa, b, &xb, &r), 0);
+	struct collide_scratch *sc = collide_scratch_make();
+	assert_int_equal(collide_distance(sc, a, &xa, b, &xb, &r), 0);
 	assert_true(fabs(r.distance - 0.5) < 1e-9);
 	/* the closest points lie on the facing faces, straight across */
 	assert_true(fabs(r.pa[0] - 0.5) < 1e-9);
 	assert_true(fabs(r.pb[0] - 1.0) < 1e-9);
 	assert_true(fabs(r.pa[1] - r.pb[1]) < 1e-9 && fabs(r.pa[2] - r.pb[2]) < 1e-9);
 	assert_true(r.pa[1] >= -0.3 - 1e-9 && r.pa[1] <= 0.5 + 1e-9);
-	assert_int_equal(collide_overlap(a, &xa, b, &xb), 0);
+	assert_int_equal(collide_overlap(sc, a, &xa, b, &xb), 0);
 	/* moved apart: the mesh itself is not rebuilt, only placed */
 	xb = at(0, 3, 0, 0);
-	assert_int_equal(collide_distance(a, &xa, b, &xb, &r), 0);
+	assert_int_equal(collide_distance(sc, a, &xa, b, &xb, &r), 0);
 	assert_true(fabs(r.distance - 2.0) < 1e-9);
 	collide_mesh_free(a);
 	collide_mesh_free(b);
+	collide_scratch_free(sc);
 }
 
 static void
@@ -144,13 +146,15 @@ test_box_turned(void **st)
 	struct collide_mesh *a = box(0.5, 0.5, 0.5), *b = box(0.5, 0.5, 0.5);
 	struct xform xa = at(0, 0, 0, 0), xb = at(2, 0, 0, 45);
 	struct collide_result r;
-	assert_int_equal(collide_distance(a, &xa, b, &xb, &r), 0);
+	struct collide_scratch *sc = collide_scratch_make();
+	assert_int_equal(collide_distance(sc, a, &xa, b, &xb, &r), 0);
 	/* b's vertical edge at x = 2 - sqrt(2)/2 faces a's face at x = 0.5 */
 	double want = 2 - sqrt(2) / 2 - 0.5;
 	assert_true(fabs(r.distance - want) < 1e-6);
 	assert_true(fabs(r.pb[0] - (2 - sqrt(2) / 2)) < 1e-6 && fabs(r.pb[1]) < 1e-6);
 	collide_mesh_free(a);
 	collide_mesh_free(b);
+	collide_scratch_free(sc);
 }
 
 static void
@@ -161,14 +165,16 @@ test_boxes_overlap(void **st)
 	/* b's face 0.1 inside a's face at x = 0.5 */
 	struct xform xa = at(0, 0, 0, 0), xb = at(0.5 + 0.25 - 0.1, 0, 0, 0);
 	struct collide_result r;
-	assert_int_equal(collide_distance(a, &xa, b, &xb, &r), 0);
+	struct collide_scratch *sc = collide_scratch_make();
+	assert_int_equal(collide_distance(sc, a, &xa, b, &xb, &r), 0);
 	printf("collide: overlap 0.1: distance %.9f at %.6f %.6f %.6f\n", r.distance, r.pa[0], r.pa[1],
 	       r.pa[2]);
 	assert_true(r.distance < 0);
 	assert_true(fabs(r.distance + 0.1) < 1e-6);
-	assert_int_equal(collide_overlap(a, &xa, b, &xb), 1);
+	assert_int_equal(collide_overlap(sc, a, &xa, b, &xb), 1);
 	collide_mesh_free(a);
 	collide_mesh_free(b);
+	collide_scratch_free(sc);
 }
 
 static void
@@ -177,11 +183,12 @@ test_spheres(void **st)
 	(void)st;
 	double sag_a, sag_b;
 	struct collide_mesh *a = sphere(0.3, 4, &sag_a), *b = sphere(0.2, 4, &sag_b);
+	struct collide_scratch *sc = collide_scratch_make();
 	for (int k = 0; k < 20; k++) {
 		double d = 0.52 + 0.05 * k, yaw = 0.3 * k; /* radians */
 		struct xform xa = at(0.1, 0.2, 0.3, 0), xb = at(0.1 + d * cos(yaw), 0.2 + d * sin(yaw), 0.3, 0);
 		struct collide_result r;
-		assert_int_equal(collide_distance(a, &xa, b, &xb, &r), 0);
+		assert_int_equal(collide_distance(sc, a, &xa, b, &xb, &r), 0);
 		double want = d - 0.5;
 		/* the tessellated spheres lie between their inscribed and circumscribed ones
 		 * (the vertices are floats: 1e-7 m at these radii) */
@@ -201,6 +208,7 @@ test_spheres(void **st)
 	}
 	collide_mesh_free(a);
 	collide_mesh_free(b);
+	collide_scratch_free(sc);
 }
 
 static void

@@ -17,7 +17,7 @@
  * minimum translation that separates the two volumes); that is the depth
  * reported.
  *
- * Queries allocate nothing of ours; FCL allocates inside its traversal.
+ * Once their scratch is warm, queries allocate nothing.
  */
 #ifndef POSTURE_FIT_COLLIDE_H
 #define POSTURE_FIT_COLLIDE_H
@@ -52,20 +52,30 @@ struct collide_result {
 };
 
 /*
- * The separation of mesh a placed by xa (mesh frame to world) and mesh b
- * placed by xb. Returns 0 with *out filled, or -1 when FCL fails (out
- * untouched).
+ * What a query keeps between calls: the contacts' storage, so that once
+ * warm a query allocates nothing (FCL's distance between meshes apart
+ * allocates nothing of its own; its contact list would, each time). One a
+ * thread; NULL when out of memory.
  */
-int collide_distance(const struct collide_mesh *a, const struct xform *xa,
-		     const struct collide_mesh *b, const struct xform *xb,
+struct collide_scratch;
+struct collide_scratch *collide_scratch_make(void);
+void collide_scratch_free(struct collide_scratch *sc);
+
+/*
+ * The separation of mesh a placed by xa (mesh frame to world) and mesh b
+ * placed by xb, with scratch sc. Returns 0 with *out filled, or -1 when
+ * FCL fails (out untouched).
+ */
+int collide_distance(struct collide_scratch *sc, const struct collide_mesh *a,
+		     const struct xform *xa, const struct collide_mesh *b, const struct xform *xb,
 		     struct collide_result *out);
 
 /*
  * 1 when a and b placed so overlap (any pair of triangles intersects),
  * else 0: cheaper than a distance when only contact matters.
  */
-int collide_overlap(const struct collide_mesh *a, const struct xform *xa,
-		    const struct collide_mesh *b, const struct xform *xb);
+int collide_overlap(struct collide_scratch *sc, const struct collide_mesh *a,
+		    const struct xform *xa, const struct collide_mesh *b, const struct xform *xb);
 
 #ifdef __cplusplus
 }

@@ -112,32 +112,56 @@ collide_mesh_bounds(const struct collide_mesh *m, double lo[3], double hi[3])
 	}
 }
 
-/* the deepest contact of two overlapping meshes: 1 found, 0 none, -1 failure */
+struct collide_scratch {
+	/* cleared, not freed, between queries: its contact list keeps its capacity */
+	fcl::CollisionResultd contacts;
+};
+
+extern "C" struct collide_scratch *
+collide_scratch_make(void)
+{
+	try {
+		std::unique_ptr<collide_scratch> sc(new collide_scratch);
+		fcl::Contactd c;
+		for (int i = 0; i < 256; i++) /* room for the contacts of a deep overlap */
+			sc->contacts.addContact(c);
+		sc->contacts.clear();
+		return sc.release();
+	} catch (...) {
+		return nullptr;
+	}
+}
+
+extern "C" void
+collide_scratch_free(struct collide_scratch *sc)
+{
+	delete sc;
+}
+
+/* the deepest contact of two overlapping meshes: 1 found, 0 none */
 static int
-deepest_contact(const fcl::CollisionObjectd &oa, const fcl::CollisionObjectd &ob,
-		struct collide_result *out)
+deepest_contact(collide_scratch *sc, const fcl::CollisionObjectd &oa,
+		const fcl::CollisionObjectd &ob, struct collide_result *out)
 {
 	fcl::CollisionRequestd req(100000, true); /* every contact, with its depth */
-	fcl::CollisionResultd res;
+	fcl::CollisionResultd &res = sc->contacts;
+	res.clear();
 	fcl::collide(&oa, &ob, req, res);
-	if (!res.isCollision())
+	if (!res.isCollision() || res.numContacts() == 0)
 		return 0;
-	std::vector<fcl::Contactd> contacts;
-	res.getContacts(contacts);
-	if (contacts.empty())
-		return 0;
-	const fcl::Contactd *deep = &contacts[0];
-	for (const fcl::Contactd &c : contacts)
-		if (c.penetration_depth > deep->penetration_depth)
-			deep = &c;
-	out->distance = -deep->penetration_depth;
-	put(out->pa, deep->pos);
-	put(out->pb, deep->pos);
+	size_t deep = 0;
+	for (size_t i = 1; i < res.numContacts(); i++)
+		if (res.getContact(i).penetration_depth > res.getContact(deep).penetration_depth)
+			deep = i;
+	const fcl::Contactd &c = res.getContact(deep);
+	out->distance = -c.penetration_depth;
+	put(out->pa, c.pos);
+	put(out->pb, c.pos);
 	return 1;
 }
 
 extern "C" int
-collide_distance(const struct collide_mesh *a, const struct xform *xa,
+collide_distance(struct collide_scratch *sc, const struct collide_mesh *a, const struct xform *xa,
 		 const struct collide_mesh *b, const struct xform *xb, struct collide_result *out)
 {
 	try {
@@ -152,10 +176,7 @@ collide_distance(const struct collide_mesh *a, const struct xform *xa,
 			return 0;
 		}
 		struct collide_result c;
-		int k = deepest_contact(oa, ob, &c);
-		if (k < 0)
-			return -1;
-		if (k == 0) { /* touching: no depth to report */
+		if (!deepest_contact(sc, oa, ob, &c)) { /* touching: no depth to report */
 			out->distance = 0;
 			put(out->pa, res.nearest_points[0]);
 			put(out->pb, res.nearest_points[1]);
@@ -169,13 +190,14 @@ collide_distance(const struct collide_mesh *a, const struct xform *xa,
 }
 
 extern "C" int
-collide_overlap(const struct collide_mesh *a, const struct xform *xa,
+collide_overlap(struct collide_scratch *sc, const struct collide_mesh *a, const struct xform *xa,
 		const struct collide_mesh *b, const struct xform *xb)
 {
 	try {
 		fcl::CollisionObjectd oa(a->model, to_fcl(xa)), ob(b->model, to_fcl(xb));
 		fcl::CollisionRequestd req;
-		fcl::CollisionResultd res;
+		fcl::CollisionResultd &res = sc->contacts;
+		res.clear();
 		fcl::collide(&oa, &ob, req, res);
 		return res.isCollision() ? 1 : 0;
 	} catch (...) {
