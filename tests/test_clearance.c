@@ -4,8 +4,10 @@
  * gives (the pairs within the threshold, their distances and points, and
  * the minimum) on random postures of the human in the vehicle seat; the
  * pairs left out of self-clearance are the jointed ones and the table's,
- * and nothing else; a hand pushed into the steering wheel is reported as
- * interpenetrating; and a query allocates nothing of ours once warm.
+ * and nothing else; with the caches of the last frames, a drag's every
+ * frame still gives the every-pair answer; the hands gripping the steering
+ * wheel are reported as
+ * interpenetrating; and a query allocates nothing once warm.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -110,11 +112,13 @@ same(const struct clearance_result *got, const struct clearance_result *ref)
 	assert_int_equal(got->npairs, ref->npairs);
 	for (int i = 0; i < ref->npairs; i++) {
 		const struct clearance_pair *a = &got->pair[i], *b = &ref->pair[i];
-		assert_true(fabs(a->distance - b->distance) < 1e-12);
+		assert_true(fabs(a->distance - b->distance) < 1e-11);
 		assert_true(a->seg_a == b->seg_a && a->seg_b == b->seg_b);
+		for (int k = 0; k < 3; k++)
+			assert_true(fabs(a->pa[k] - b->pa[k]) < 1e-9 && fabs(a->pb[k] - b->pb[k]) < 1e-9);
 	}
 	assert_int_equal(got->has_minimum, ref->has_minimum);
-	assert_true(fabs(got->minimum.distance - ref->minimum.distance) < 1e-12);
+	assert_true(fabs(got->minimum.distance - ref->minimum.distance) < 1e-11);
 }
 
 static void
@@ -132,14 +136,14 @@ test_pruned_equals_every_pair(void **st)
 		jiggle(m, g->sc.hs, q0, 0.3 * (k % 4), &seed);
 		double threshold = 0.01 * (k % 5);
 		clearance_begin(&g->res, threshold);
-		assert_int_equal(clearance_between(g->w, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res), 0);
+		assert_int_equal(clearance_between(g->w, NULL, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res), 0);
 		clearance_sort(&g->res);
 		exhaustive(g->fh, g->sc.hs, g->fs, g->sc.ss, 0, threshold, &ref);
 		same(&g->res, &ref);
 		asked += g->res.asked;
 		candidates += g->res.candidates;
 		clearance_begin(&g->res, threshold);
-		assert_int_equal(clearance_self(g->w, 0, g->fh, g->sc.hs, &g->res), 0);
+		assert_int_equal(clearance_self(g->w, NULL, 0, g->fh, g->sc.hs, &g->res), 0);
 		clearance_sort(&g->res);
 		exhaustive(g->fh, g->sc.hs, g->fh, g->sc.hs, 1, threshold, &ref);
 		same(&g->res, &ref);
@@ -149,6 +153,64 @@ test_pruned_equals_every_pair(void **st)
 	printf("clearance: %ld of %ld pairs asked\n", asked, candidates);
 	assert_true(asked < candidates / 2); /* the bounds do prune */
 	free(q0);
+	rig_free(g);
+}
+
+/*
+ * A drag: the right arm raised a little each frame, then the whole body
+ * swept; with the caches, every frame's answer is the every-pair answer,
+ * and most pairs are settled by their last answer.
+ */
+static void
+test_cached_frames_equal_every_pair(void **st)
+{
+	(void)st;
+	struct rig *g = rig_make();
+	const struct model *m = g->sc.human;
+	struct clearance_cache *cb = clearance_cache_make(g->fh, g->fs);
+	struct clearance_cache *cs = clearance_cache_make(g->fh, g->fh);
+	assert_non_null(cb);
+	assert_non_null(cs);
+	/* another pair's cache is refused */
+	clearance_begin(&g->res, 0.02);
+	assert_int_equal(clearance_between(g->w, cs, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res), -1);
+	double *q0 = malloc(sizeof(double) * (size_t)m->ndof);
+	memcpy(q0, g->sc.hs->q, sizeof(double) * (size_t)m->ndof);
+	int sh = m->jnt_dof0[model_find_joint(m, "shoulder_r")];
+	int el = m->jnt_dof0[model_find_joint(m, "elbow_r")];
+	static struct clearance_result ref;
+	unsigned seed = 3;
+	long asked = 0, reused = 0, candidates = 0;
+	for (int f = 0; f < 120; f++) {
+		if (f < 60) { /* the arm alone moves */
+			g->sc.hs->q[sh] = q0[sh] - 0.02 * f;
+			g->sc.hs->q[el] = q0[el] + 0.01 * f;
+			kin_forward(m, g->sc.hs);
+		} else {
+			jiggle(m, g->sc.hs, q0, 0.05 * (f % 7), &seed);
+		}
+		clearance_begin(&g->res, 0.02);
+		assert_int_equal(clearance_between(g->w, cb, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res), 0);
+		clearance_sort(&g->res);
+		exhaustive(g->fh, g->sc.hs, g->fs, g->sc.ss, 0, 0.02, &ref);
+		same(&g->res, &ref);
+		asked += g->res.asked;
+		reused += g->res.reused;
+		candidates += g->res.candidates;
+		clearance_begin(&g->res, 0.02);
+		assert_int_equal(clearance_self(g->w, cs, 0, g->fh, g->sc.hs, &g->res), 0);
+		clearance_sort(&g->res);
+		exhaustive(g->fh, g->sc.hs, g->fh, g->sc.hs, 1, 0.02, &ref);
+		same(&g->res, &ref);
+		asked += g->res.asked;
+		reused += g->res.reused;
+		candidates += g->res.candidates;
+	}
+	printf("clearance: cached: %ld asked, %ld reused of %ld pairs\n", asked, reused, candidates);
+	assert_true(reused > 0);
+	free(q0);
+	clearance_cache_free(cb);
+	clearance_cache_free(cs);
 	rig_free(g);
 }
 
@@ -187,7 +249,7 @@ test_self_skips_jointed_and_table_only(void **st)
 	       checked);
 	/* at rest, standing or seated, no checked pair interpenetrates */
 	clearance_begin(&g->res, 0);
-	assert_int_equal(clearance_self(g->w, 0, g->fh, g->sc.hs, &g->res), 0);
+	assert_int_equal(clearance_self(g->w, NULL, 0, g->fh, g->sc.hs, &g->res), 0);
 	assert_true(g->res.minimum.distance > 0);
 	rig_free(g);
 }
@@ -202,7 +264,7 @@ test_hand_into_the_wheel(void **st)
 	int hand = model_find_segment(g->sc.human, "hand_r");
 	assert_true(wheel >= 0 && hand >= 0);
 	clearance_begin(&g->res, 0.02);
-	assert_int_equal(clearance_between(g->w, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res), 0);
+	assert_int_equal(clearance_between(g->w, NULL, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res), 0);
 	int found = 0;
 	for (int i = 0; i < g->res.npairs; i++)
 		if (g->res.pair[i].seg_a == hand && g->res.pair[i].seg_b == wheel) {
@@ -220,17 +282,21 @@ test_no_alloc_of_ours(void **st)
 	(void)st;
 #if COUNT_ALLOCS
 	struct rig *g = rig_make();
+	struct clearance_cache *cb = clearance_cache_make(g->fh, g->fs);
 	clearance_begin(&g->res, 0.02);
-	clearance_between(g->w, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res);
+	clearance_between(g->w, cb, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res);
 	long a0 = allocs;
 	for (int i = 0; i < 10; i++) {
+		g->sc.hs->q[0] += 0.001; /* something moves: the pairs are asked again */
+		kin_forward(g->sc.human, g->sc.hs);
 		clearance_begin(&g->res, 0.02);
-		clearance_between(g->w, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res);
-		clearance_self(g->w, 0, g->fh, g->sc.hs, &g->res);
+		clearance_between(g->w, cb, 0, g->fh, g->sc.hs, 1, g->fs, g->sc.ss, &g->res);
+		clearance_self(g->w, NULL, 0, g->fh, g->sc.hs, &g->res);
 		clearance_sort(&g->res);
 	}
 	printf("clearance: 10 queries, %ld heap calls\n", allocs - a0);
 	assert_int_equal(allocs - a0, 0);
+	clearance_cache_free(cb);
 	rig_free(g);
 #endif
 }
@@ -240,6 +306,7 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_pruned_equals_every_pair),
+		cmocka_unit_test(test_cached_frames_equal_every_pair),
 		cmocka_unit_test(test_self_skips_jointed_and_table_only),
 		cmocka_unit_test(test_hand_into_the_wheel),
 		cmocka_unit_test(test_no_alloc_of_ours),

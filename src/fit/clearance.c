@@ -5,8 +5,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define UNMOVED 1e-12 /* m: a pair moved less than this relative to itself takes its last answer */
+
 struct candidate {
-	double bound; /* a lower bound of the pair's distance: its world boxes' gap */
+	double bound; /* a lower bound of the pair's distance */
+	double moved; /* m: how far b can have moved relative to a since the cached answer */
 	int a, b;
 };
 
@@ -15,6 +18,20 @@ struct clearance_work {
 	double *lo_a, *hi_a, *lo_b, *hi_b; /* max_seg x 3: world boxes this query */
 	struct candidate *cand;            /* max_seg^2 */
 	struct collide_scratch *scratch;
+};
+
+/* the last answer of a pair: in a's frame, b's place then, and the answer */
+struct answer {
+	double rel[12];   /* b's frame in a's frame: rotation (row-major), translation */
+	double distance;
+	double pa[3];     /* a's point, in a's frame */
+	double pb[3];     /* b's point, in b's frame */
+	unsigned char valid;
+};
+
+struct clearance_cache {
+	const struct fit_model *fa, *fb;
+	struct answer *ans; /* fa->nseg x fb->nseg */
 };
 
 struct clearance_work *
@@ -54,6 +71,37 @@ clearance_work_free(struct clearance_work *w)
 	free(w);
 }
 
+struct clearance_cache *
+clearance_cache_make(const struct fit_model *fa, const struct fit_model *fb)
+{
+	struct clearance_cache *c = calloc(1, sizeof *c);
+	if (!c)
+		return NULL;
+	c->fa = fa;
+	c->fb = fb;
+	c->ans = calloc((size_t)fa->nseg * (size_t)fb->nseg + 1, sizeof *c->ans);
+	if (!c->ans) {
+		free(c);
+		return NULL;
+	}
+	return c;
+}
+
+void
+clearance_cache_free(struct clearance_cache *c)
+{
+	if (!c)
+		return;
+	free(c->ans);
+	free(c);
+}
+
+void
+clearance_cache_forget(struct clearance_cache *c)
+{
+	memset(c->ans, 0, sizeof *c->ans * (size_t)c->fa->nseg * (size_t)c->fb->nseg);
+}
+
 void
 clearance_begin(struct clearance_result *res, double threshold)
 {
@@ -63,6 +111,7 @@ clearance_begin(struct clearance_result *res, double threshold)
 	res->has_minimum = 0;
 	res->candidates = 0;
 	res->asked = 0;
+	res->reused = 0;
 }
 
 /* the gap between two boxes: 0 when they overlap */
@@ -78,7 +127,43 @@ box_gap(const double *la, const double *ha, const double *lb, const double *hb)
 	return sqrt(s);
 }
 
-/* heap sort by bound, ascending: in place, no allocation (qsort may allocate) */
+/* b's frame in a's: rel = a^-1 b */
+static void
+relative(const struct xform *a, const struct xform *b, double rel[12])
+{
+	for (int i = 0; i < 3; i++) {
+		for (int j = 0; j < 3; j++) {
+			double s = 0;
+			for (int k = 0; k < 3; k++)
+				s += a->r[3 * k + i] * b->r[3 * k + j];
+			rel[3 * i + j] = s;
+		}
+		double t = 0;
+		for (int k = 0; k < 3; k++)
+			t += a->r[3 * k + i] * (b->p[k] - a->p[k]);
+		rel[9 + i] = t;
+	}
+}
+
+/*
+ * How far a point of b within radius of b's origin can have moved in a's
+ * frame between relative transforms r0 and r1: the translation's change
+ * plus the chord of the rotation between them, |R1 R0^T - I| = 2 sin(θ/2)
+ * = sqrt(3 - trace(R1 R0^T)), times the radius.
+ */
+static double
+moved_by(const double *r0, const double *r1, double radius)
+{
+	double tr = 0, dt = 0;
+	for (int i = 0; i < 3; i++)
+		for (int k = 0; k < 3; k++)
+			tr += r1[3 * i + k] * r0[3 * i + k];
+	for (int i = 0; i < 3; i++)
+		dt += (r1[9 + i] - r0[9 + i]) * (r1[9 + i] - r0[9 + i]);
+	return sqrt(dt) + sqrt(fmax(0, 3 - tr)) * radius;
+}
+
+/* heap sort by bound, ascending: in place, no allocation (glibc's qsort may allocate) */
 static void
 sift(struct candidate *c, int root, int n)
 {
@@ -133,10 +218,44 @@ keep(struct clearance_result *res, const struct clearance_pair *p)
 		res->more++;
 }
 
+/* the pair (a, b) as a candidate: its bound from the boxes and the cache */
+static void
+add_candidate(struct clearance_work *w, int *n, struct clearance_cache *c, const struct fit_model *fb,
+	      const struct state *sa, const struct state *sb, const double *la, const double *ha,
+	      const double *lb, const double *hb, int a, int b)
+{
+	struct candidate k = { box_gap(la, ha, lb, hb), INFINITY, a, b };
+	if (c && c->ans[a * fb->nseg + b].valid) {
+		const struct answer *an = &c->ans[a * fb->nseg + b];
+		double rel[12];
+		relative(&sa->seg_xf[a], &sb->seg_xf[b], rel);
+		k.moved = moved_by(an->rel, rel, fb->radius[b]);
+		k.bound = fmax(k.bound, an->distance - k.moved);
+	}
+	w->cand[(*n)++] = k;
+}
+
+static void
+to_world(const struct xform *f, const double local[3], double dest[3])
+{
+	for (int i = 0; i < 3; i++)
+		dest[i] = f->r[3 * i] * local[0] + f->r[3 * i + 1] * local[1] + f->r[3 * i + 2] * local[2] +
+			  f->p[i];
+}
+
+static void
+to_local(const struct xform *f, const double world[3], double dest[3])
+{
+	for (int i = 0; i < 3; i++)
+		dest[i] = f->r[i] * (world[0] - f->p[0]) + f->r[3 + i] * (world[1] - f->p[1]) +
+			  f->r[6 + i] * (world[2] - f->p[2]);
+}
+
 /* the candidates in nearest-bound order, asked while they could matter */
 static int
-ask(struct clearance_work *w, int n, int ia, const struct fit_model *fa, const struct state *sa,
-    int ib, const struct fit_model *fb, const struct state *sb, struct clearance_result *res)
+ask(struct clearance_work *w, struct clearance_cache *cache, int n, int ia,
+    const struct fit_model *fa, const struct state *sa, int ib, const struct fit_model *fb,
+    const struct state *sb, struct clearance_result *res)
 {
 	sort_candidates(w->cand, n);
 	res->candidates += n;
@@ -145,29 +264,45 @@ ask(struct clearance_work *w, int n, int ia, const struct fit_model *fa, const s
 		double reach = res->threshold;
 		if (!res->has_minimum || res->minimum.distance > reach)
 			reach = res->has_minimum ? res->minimum.distance : INFINITY;
-		/* a gap between the boxes bounds the distance from below; overlapping boxes
-		 * (a bound of 0) may hide any depth of penetration, so they are always asked */
+		/* a gap bounds the distance from below; a bound of 0 (boxes overlapping, or
+		 * a pair that was touching) may hide any depth of penetration: always asked */
 		if (c->bound > 0 && c->bound >= reach && res->has_minimum)
 			break; /* this and every later pair: neither within the threshold nor nearer */
-		struct collide_result r;
-		if (collide_distance(w->scratch, fa->mesh[c->a], &sa->seg_xf[c->a], fb->mesh[c->b], &sb->seg_xf[c->b],
-				     &r) < 0)
-			return -1;
-		res->asked++;
-		struct clearance_pair p = { ia, c->a, ib, c->b, r.distance, { 0 }, { 0 } };
-		memcpy(p.pa, r.pa, sizeof p.pa);
-		memcpy(p.pb, r.pb, sizeof p.pb);
+		struct clearance_pair p = { ia, c->a, ib, c->b, 0, { 0 }, { 0 } };
+		struct answer *an = cache ? &cache->ans[c->a * fb->nseg + c->b] : NULL;
+		if (an && an->valid && c->moved <= UNMOVED) {
+			p.distance = an->distance;
+			to_world(&sa->seg_xf[c->a], an->pa, p.pa);
+			to_world(&sb->seg_xf[c->b], an->pb, p.pb);
+			res->reused++;
+		} else {
+			struct collide_result r;
+			if (collide_distance(w->scratch, fa->mesh[c->a], &sa->seg_xf[c->a],
+					     fb->mesh[c->b], &sb->seg_xf[c->b], &r) < 0)
+				return -1;
+			res->asked++;
+			p.distance = r.distance;
+			memcpy(p.pa, r.pa, sizeof p.pa);
+			memcpy(p.pb, r.pb, sizeof p.pb);
+			if (an) {
+				relative(&sa->seg_xf[c->a], &sb->seg_xf[c->b], an->rel);
+				an->distance = r.distance;
+				to_local(&sa->seg_xf[c->a], r.pa, an->pa);
+				to_local(&sb->seg_xf[c->b], r.pb, an->pb);
+				an->valid = 1;
+			}
+		}
 		keep(res, &p);
 	}
 	return 0;
 }
 
 int
-clearance_between(struct clearance_work *w, int ia, const struct fit_model *fa,
-		  const struct state *sa, int ib, const struct fit_model *fb, const struct state *sb,
-		  struct clearance_result *res)
+clearance_between(struct clearance_work *w, struct clearance_cache *c, int ia,
+		  const struct fit_model *fa, const struct state *sa, int ib,
+		  const struct fit_model *fb, const struct state *sb, struct clearance_result *res)
 {
-	if (fa->nseg > w->max_seg || fb->nseg > w->max_seg)
+	if (fa->nseg > w->max_seg || fb->nseg > w->max_seg || (c && (c->fa != fa || c->fb != fb)))
 		return -1;
 	world_boxes(fa, sa, w->lo_a, w->hi_a);
 	world_boxes(fb, sb, w->lo_b, w->hi_b);
@@ -175,34 +310,28 @@ clearance_between(struct clearance_work *w, int ia, const struct fit_model *fa,
 	for (int a = 0; a < fa->nseg; a++) {
 		if (!fa->mesh[a])
 			continue;
-		for (int b = 0; b < fb->nseg; b++) {
-			if (!fb->mesh[b])
-				continue;
-			w->cand[n++] = (struct candidate){
-				box_gap(w->lo_a + 3 * a, w->hi_a + 3 * a, w->lo_b + 3 * b, w->hi_b + 3 * b), a, b
-			};
-		}
+		for (int b = 0; b < fb->nseg; b++)
+			if (fb->mesh[b])
+				add_candidate(w, &n, c, fb, sa, sb, w->lo_a + 3 * a, w->hi_a + 3 * a,
+					      w->lo_b + 3 * b, w->hi_b + 3 * b, a, b);
 	}
-	return ask(w, n, ia, fa, sa, ib, fb, sb, res);
+	return ask(w, c, n, ia, fa, sa, ib, fb, sb, res);
 }
 
 int
-clearance_self(struct clearance_work *w, int i, const struct fit_model *f, const struct state *s,
-	       struct clearance_result *res)
+clearance_self(struct clearance_work *w, struct clearance_cache *c, int i,
+	       const struct fit_model *f, const struct state *s, struct clearance_result *res)
 {
-	if (f->nseg > w->max_seg)
+	if (f->nseg > w->max_seg || (c && (c->fa != f || c->fb != f)))
 		return -1;
 	world_boxes(f, s, w->lo_a, w->hi_a);
 	int n = 0;
 	for (int a = 0; a < f->nseg; a++)
 		for (int b = a + 1; b < f->nseg; b++)
 			if (fit_model_skip(f, a, b) == FIT_CHECKED)
-				w->cand[n++] = (struct candidate){
-					box_gap(w->lo_a + 3 * a, w->hi_a + 3 * a, w->lo_a + 3 * b,
-						w->hi_a + 3 * b),
-					a, b
-				};
-	return ask(w, n, i, f, s, i, f, s, res);
+				add_candidate(w, &n, c, f, s, s, w->lo_a + 3 * a, w->hi_a + 3 * a,
+					      w->lo_a + 3 * b, w->hi_a + 3 * b, a, b);
+	return ask(w, c, n, i, f, s, i, f, s, res);
 }
 
 void

@@ -4,15 +4,21 @@
  * penetration depth as a negative distance, and the two closest points),
  * and the smallest distance of all.
  *
- * The exact distance (collide.h) is asked only where it could matter: each
- * pair's world bounding boxes give a lower bound of its distance, pairs are
- * taken nearest bound first, and a pair whose bound is beyond both the
+ * The exact distance (collide.h) is asked only where it could matter. Each
+ * pair has a lower bound of its distance: the gap between the segments'
+ * world bounding boxes, and, with a cache of the last frames, the distance
+ * found when last asked less how far any point of one mesh can have moved
+ * relative to the other since (the relative transform's translation plus
+ * its rotation's chord times the mesh's radius). Pairs are taken nearest
+ * bound first, and a pair whose bound is positive and beyond both the
  * threshold and the smallest distance found so far is left unasked: its
- * true distance can change neither. The result is the same as asking
- * every pair.
+ * distance can change neither. A pair whose relative transform has not
+ * moved (1e-12 m) takes its last answer as it was. The result is the same
+ * as asking every pair, to that 1e-12 m.
  *
  * A clearance_work holds the scratch of a query, allocated once
- * (clearance_work_make); queries allocate nothing of ours.
+ * (clearance_work_make); a clearance_cache what a pair of figures' last
+ * query found. Queries allocate nothing.
  */
 #ifndef POSTURE_CLEARANCE_H
 #define POSTURE_CLEARANCE_H
@@ -38,6 +44,7 @@ struct clearance_result {
 	struct clearance_pair minimum;
 	long candidates; /* pairs considered */
 	long asked;      /* pairs whose exact distance was computed */
+	long reused;     /* pairs whose last answer stood (nothing moved between them) */
 };
 
 struct clearance_work;
@@ -45,22 +52,31 @@ struct clearance_work;
 struct clearance_work *clearance_work_make(int max_seg);
 void clearance_work_free(struct clearance_work *w);
 
+struct clearance_cache;
+/* the cache of figures fa and fb (the same for a figure with itself); NULL when out of memory */
+struct clearance_cache *clearance_cache_make(const struct fit_model *fa, const struct fit_model *fb);
+void clearance_cache_free(struct clearance_cache *c);
+/* forgets every answer (the next query asks afresh) */
+void clearance_cache_forget(struct clearance_cache *c);
+
 /* an empty result for threshold (m, >= 0) */
 void clearance_begin(struct clearance_result *res, double threshold);
 
 /*
  * Adds the pairs between figure a (number ia, model fa, posture sa with
- * kin_forward done) and figure b (ib, fb, sb) to res. Returns 0, or -1
- * when a figure has more segments than the work was made for or the
- * collision library fails.
+ * kin_forward done) and figure b (ib, fb, sb) to res, with cache c made
+ * for fa and fb (NULL: none, every bound from the boxes alone). Returns 0,
+ * or -1 when a figure has more segments than the work was made for, the
+ * cache is another pair's, or the collision library fails.
  */
-int clearance_between(struct clearance_work *w, int ia, const struct fit_model *fa,
-		      const struct state *sa, int ib, const struct fit_model *fb,
-		      const struct state *sb, struct clearance_result *res);
+int clearance_between(struct clearance_work *w, struct clearance_cache *c, int ia,
+		      const struct fit_model *fa, const struct state *sa, int ib,
+		      const struct fit_model *fb, const struct state *sb,
+		      struct clearance_result *res);
 
-/* the same for figure i with itself, leaving out the pairs its model skips */
-int clearance_self(struct clearance_work *w, int i, const struct fit_model *f, const struct state *s,
-		   struct clearance_result *res);
+/* the same for figure i with itself (c made for f and f), leaving out the pairs its model skips */
+int clearance_self(struct clearance_work *w, struct clearance_cache *c, int i,
+		   const struct fit_model *f, const struct state *s, struct clearance_result *res);
 
 /* sorts res's pairs nearest first (the queries keep them in the order found) */
 void clearance_sort(struct clearance_result *res);

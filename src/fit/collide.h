@@ -13,9 +13,10 @@
  * distance and the two closest points when they are apart; when they
  * interpenetrate, the penetration depth of their deepest contact as a
  * negative distance, with the contact point as both points. FCL computes
- * mesh-mesh penetration per pair of intersecting triangles (not the
- * minimum translation that separates the two volumes); that is the depth
- * reported.
+ * mesh-mesh penetration per pair of intersecting triangles, not the
+ * translation that would separate the two volumes: two 10 cm spheres
+ * overlapping by 5 cm read as 1.2 cm. That is the depth reported; it says
+ * how deep surfaces cross, and understates how deep volumes overlap.
  *
  * Once their scratch is warm, queries allocate nothing.
  */

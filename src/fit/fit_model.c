@@ -49,8 +49,9 @@ fit_model_make(const struct model *m, char *err, size_t errlen)
 	f->mesh = calloc((size_t)m->nseg + 1, sizeof *f->mesh);
 	f->lo = calloc(3 * (size_t)m->nseg + 1, sizeof *f->lo);
 	f->hi = calloc(3 * (size_t)m->nseg + 1, sizeof *f->hi);
+	f->radius = calloc((size_t)m->nseg + 1, sizeof *f->radius);
 	f->skip = calloc((size_t)m->nseg * (size_t)m->nseg + 1, 1);
-	if (!f->mesh || !f->lo || !f->hi || !f->skip)
+	if (!f->mesh || !f->lo || !f->hi || !f->radius || !f->skip)
 		goto oom;
 	for (int s = 0; s < m->nseg; s++) {
 		struct seg_mesh sm;
@@ -66,6 +67,12 @@ fit_model_make(const struct model *m, char *err, size_t errlen)
 				return NULL;
 			}
 			collide_mesh_bounds(f->mesh[s], f->lo + 3 * s, f->hi + 3 * s);
+			for (int v = 0; v < sm.nvert; v++) {
+				const float *x = sm.pos + 3 * v;
+				double r = sqrt((double)x[0] * x[0] + (double)x[1] * x[1] +
+						(double)x[2] * x[2]);
+				f->radius[s] = r > f->radius[s] ? r : f->radius[s];
+			}
 			f->ntri += sm.ntri;
 		}
 		seg_mesh_free(&sm);
@@ -89,6 +96,7 @@ fit_model_free(struct fit_model *f)
 	free(f->mesh);
 	free(f->lo);
 	free(f->hi);
+	free(f->radius);
 	free(f->skip);
 	free(f);
 }

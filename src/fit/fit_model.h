@@ -33,6 +33,7 @@ struct fit_model {
 	int nseg;
 	struct collide_mesh **mesh; /* nseg: NULL for a segment without geometry */
 	double *lo, *hi;            /* nseg x 3: each mesh's bounds in its segment's frame */
+	double *radius;             /* nseg: the farthest of its mesh from the segment's origin */
 	unsigned char *skip;        /* nseg x nseg: enum fit_skip of each self pair */
 	int ntri;                   /* triangles of every mesh */
 };
