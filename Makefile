@@ -14,7 +14,14 @@ WARN    := -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototyp
 XKB_CFLAGS := $(shell pkg-config --cflags xkbcommon 2>/dev/null)
 XKB_LIBS := $(shell pkg-config --libs xkbcommon 2>/dev/null || echo -lxkbcommon)
 BASE    := -std=c11 -pthread -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Isrc -I. -I/usr/include/freetype2 -I/usr/include/libevdev-1.0 -I/usr/include/libusb-1.0 -I/usr/include/libdrm $(XKB_CFLAGS) -MMD -MP
-LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -ludev -lhidapi-hidraw -lusb-1.0 -ldrm $(XKB_LIBS) -lm
+# FCL (the fit layer's distances and contacts) is C++: its one translation unit is built by
+# $(CXX) and every program links the C++ runtime
+FCL_CFLAGS := $(filter-out -std=%,$(shell pkg-config --cflags fcl 2>/dev/null || echo -I/usr/include/eigen3))
+FCL_LIBS := $(shell pkg-config --libs fcl 2>/dev/null || echo -lfcl -lccd -loctomap -loctomath)
+CXX     ?= g++
+CXXBASE := -std=c++17 -pthread -Isrc -I. $(FCL_CFLAGS) -MMD -MP
+CXXWARN := -Wall -Wextra -Werror -Wshadow
+LIBS    := -ljansson -lOSMesa -lfreetype -lpng -levdev -ludev -lhidapi-hidraw -lusb-1.0 -ldrm $(XKB_LIBS) $(FCL_LIBS) -lstdc++ -lm
 TESTLIBS := -lcmocka -lnlopt
 # NLopt is the independent minimiser the IK tests and benchmarks compare against;
 # only tests and benchmarks link it
@@ -29,7 +36,7 @@ PY      := $(VENV)/bin/python
 # Debian packages the build, tests and benchmarks need (see docs/dependencies.md)
 DEB_PKGS := build-essential libcglm-dev libcmocka-dev libjansson-dev libnlopt-dev libeigen3-dev libpng-dev libosmesa6-dev libfreetype-dev fonts-dejavu-core python3-venv python3-pip \
 	libevdev-dev clang evemu-tools libevemu-dev umockdev libudev-dev libhidapi-dev libusb-1.0-0-dev can-utils \
-	libxkbcommon-dev xkb-data libx11-data libdrm-dev
+	libxkbcommon-dev xkb-data libx11-data libdrm-dev libfcl-dev
 # without their recommends: QEMU boots the kernel test tier's guest (tests/guest);
 # debhelper, fakeroot and lintian build and check the Debian package (make deb);
 # check_urdf (liburdfdom-tools) parses the URDF export; nodejs and npm run the Khronos glTF
@@ -42,9 +49,11 @@ DEB_PKGS_LEAN := qemu-system-x86 debhelper fakeroot lintian liburdfdom-tools nod
 GLTF_VALIDATOR := gltf-validator@2.0.0-dev.3.10
 
 # the layers, bottom up; each folder includes only from those before it (make layer-check)
-LAYERS    := figure pose assess draw export interact daemon
+LAYERS    := figure pose assess draw export interact fit daemon
 MAIN_SRC  := src/daemon/main.c
 LIB_SRC   := $(filter-out $(MAIN_SRC),$(foreach l,$(LAYERS),$(wildcard src/$(l)/*.c)) $(wildcard devices/*.c))
+# C++ translation units (the FCL wrapper alone)
+LIB_CXX   := $(foreach l,$(LAYERS),$(wildcard src/$(l)/*.cc))
 TOOL_SRC  := $(wildcard tools/*.c)
 TEST_SRC  := $(wildcard tests/test_*.c)
 BENCH_SRC := $(wildcard tools/bench/*.c)
@@ -55,7 +64,7 @@ GUEST_SRC := $(wildcard tests/guest/guest_*.c)
 define variant
 $(1)_CFLAGS := $(BASE) $(WARN) $(2)
 $(1)_LDFLAGS := $(3) $(LDFLAGS)
-$(1)_OBJ := $$(patsubst %.c,$(BUILD)/$(1)/%.o,$$(LIB_SRC))
+$(1)_OBJ := $$(patsubst %.c,$(BUILD)/$(1)/%.o,$$(LIB_SRC)) $$(patsubst %.cc,$(BUILD)/$(1)/%.o,$$(LIB_CXX))
 $(1)_LIB := $(BUILD)/$(1)/libposture.a
 $(1)_TOOLS := $$(patsubst tools/%.c,$(BUILD)/$(1)/bin/%,$$(TOOL_SRC)) $(BUILD)/$(1)/bin/postured
 $(1)_TESTS := $$(patsubst tests/%.c,$(BUILD)/$(1)/tests/%,$$(TEST_SRC))
@@ -65,6 +74,10 @@ $(1)_GUEST := $$(patsubst tests/guest/%.c,$(BUILD)/$(1)/guest/%,$$(GUEST_SRC))
 $(BUILD)/$(1)/%.o: %.c | $(BUILD)/.deps-apt
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) -c $$< -o $$@
+
+$(BUILD)/$(1)/%.o: %.cc | $(BUILD)/.deps-apt
+	@mkdir -p $$(dir $$@)
+	$$(CXX) $$(CXXBASE) $$(CXXWARN) $(4) -c $$< -o $$@
 
 $$($(1)_LIB): $$($(1)_OBJ)
 	@mkdir -p $$(dir $$@)
@@ -90,11 +103,12 @@ $(BUILD)/$(1)/guest/%: $(BUILD)/$(1)/tests/guest/%.o $$($(1)_LIB)
 	@mkdir -p $$(dir $$@)
 	$$(CC) $$($(1)_CFLAGS) $$< $$($(1)_LIB) $$($(1)_LDFLAGS) $(LIBS) -o $$@
 
+-include $$(patsubst %.cc,$(BUILD)/$(1)/%.d,$$(LIB_CXX))
 -include $$(patsubst %.c,$(BUILD)/$(1)/%.d,$$(LIB_SRC) $(MAIN_SRC) $$(TOOL_SRC) $$(TEST_SRC) $$(BENCH_SRC) $$(GUEST_SRC))
 endef
 
-$(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,))
-$(eval $(call variant,san,-O1 -g $(SAN),$(SAN)))
+$(eval $(call variant,rel,$(CFLAGS) -march=x86-64-v2,,-O2 -g -march=x86-64-v2))
+$(eval $(call variant,san,-O1 -g $(SAN),$(SAN),-O1 -g $(SAN)))
 
 .PHONY: all run test layer-check unit-test system-test fuzz fuzz-smoke bench deps check clean install deb
 .SECONDARY:
@@ -220,7 +234,8 @@ check: layer-check unit-test
 FUZZ_SRC  := $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_CC   := clang
 FUZZ_SAN  := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FUZZ_OBJ  := $(patsubst %.c,$(BUILD)/fuzz/%.o,$(LIB_SRC))
+FUZZ_OBJ  := $(patsubst %.c,$(BUILD)/fuzz/%.o,$(LIB_SRC)) $(patsubst %.cc,$(BUILD)/fuzz/%.o,$(LIB_CXX))
+FUZZ_CXX  := clang++
 FUZZ_LIB  := $(BUILD)/fuzz/libposture.a
 FUZZ_BIN  := $(patsubst tests/fuzz/%.c,$(BUILD)/fuzz/bin/%,$(FUZZ_SRC))
 FUZZ_RUNS ?= 10000000
@@ -235,6 +250,10 @@ $(BUILD)/fuzz/%.o: %.c | $(BUILD)/.deps-apt
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(BASE) $(WARN) -g -O1 $(if $(filter $<,$(FUZZ_NOCOV)),,-fsanitize=fuzzer-no-link) \
 		$(FUZZ_SAN) -c $< -o $@
+
+$(BUILD)/fuzz/%.o: %.cc | $(BUILD)/.deps-apt
+	@mkdir -p $(dir $@)
+	$(FUZZ_CXX) $(CXXBASE) $(CXXWARN) -g -O1 $(FUZZ_SAN) -c $< -o $@
 
 $(FUZZ_LIB): $(FUZZ_OBJ)
 	rm -f $@ && ar rcs $@ $^
@@ -289,7 +308,8 @@ BENCH_STANDALONE := $(BUILD)/rel/bench/ik_body $(BUILD)/rel/bench/behave_bench $
 	$(BUILD)/rel/bench/family_bench $(BUILD)/rel/bench/anthro_bench $(BUILD)/rel/bench/assess_bench \
 	$(BUILD)/rel/bench/assess_live_bench $(BUILD)/rel/bench/tint_bench $(BUILD)/rel/bench/lowback_bench \
 	$(BUILD)/rel/bench/loads_bench $(BUILD)/rel/bench/loads_live_bench $(BUILD)/rel/bench/reach_bench \
-	$(BUILD)/rel/bench/visibility_bench
+	$(BUILD)/rel/bench/visibility_bench \
+	$(BUILD)/rel/bench/fit_bench
 
 bench: deps $(rel_BENCH) $(rel_TOOLS) $(rel_GUEST) $(PEER_BENCH)
 	@set -e; for b in $(BENCH_STANDALONE); do echo "== $$b"; $$b; done

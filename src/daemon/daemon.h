@@ -27,6 +27,7 @@ struct camera;            /* draw/view.h */
 struct hemi_map;          /* draw/hemi.h */
 struct assess_live;       /* daemon/assess_live.h */
 struct loads_live;        /* daemon/loads_live.h */
+struct fit_live;          /* daemon/fit_live.h */
 
 #define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
 #define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
@@ -242,6 +243,8 @@ struct daemon {
 	struct assess_live *assess_live;
 	/* each figure's loads analysis now (loads_live.h); NULL until first asked */
 	struct loads_live *loads_live;
+	/* the figures' collision models and their pairs' last answers (fit_live.h) */
+	struct fit_live *fit_live;
 	/* commands that changed something, counted: what a cached analysis was made under */
 	uint64_t mutations;
 };

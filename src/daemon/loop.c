@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "daemon/assess_live.h"
+#include "daemon/fit_live.h"
 #include "daemon/loads_live.h"
 #include "daemon/cmd.h"
 #include "daemon/kiosk_route.h"
@@ -640,7 +641,7 @@ loop_setup(struct loop *L, const struct loop_config *cfg)
 	L->period_us = (uint64_t)(1e6 / cfg->fps);
 	server_init(&L->srv);
 	if (events_init(&L->events, &L->srv, &L->d) < 0 || assess_live_init(&L->d) < 0 ||
-	    loads_live_init(&L->d) < 0)
+	    loads_live_init(&L->d) < 0 || fit_live_init(&L->d) < 0)
 		return -1;
 	if (cfg->panel_map) {
 		if (can_map_read(cfg->panel_map, &L->panel, err, sizeof err) < 0) {
@@ -832,6 +833,7 @@ loop_teardown(struct loop *L)
 	daemon_picks_free(&L->d);
 	assess_live_free(&L->d);
 	loads_live_free(&L->d);
+	fit_live_free(&L->d);
 	daemon_text_clear(&L->d.file_read); /* the last command's file, if it read one */
 	daemon_text_clear(&L->d.file_given);
 	kiosk_free(L->modes.kiosk);

@@ -336,7 +336,7 @@ def test_the_layout_page_names_every_module_and_only_files_that_exist():
             m = re.match(r"^(src/\w+/|devices/)\s", line)
             folder = m[1] if m else folder
             for w in (x.strip("(),;:") for x in line.split()[1 if m else 0:]):
-                if not re.fullmatch(r"[\w*]+(\.\[ch\]|\.c|\.h|\.md)", w):
+                if not re.fullmatch(r"[\w*]+(\.\[ch\]|\.c|\.cc|\.h|\.md)", w):
                     continue
                 stem = w.split(".")[0]
                 found = list((ROOT / folder).glob(w.replace("[ch]", "[ch]")))
@@ -344,9 +344,11 @@ def test_the_layout_page_names_every_module_and_only_files_that_exist():
                     bad.append(f"{folder}{w}")
                 named.update(folder + p.stem for p in found) if "*" in stem else \
                     named.add(folder + stem)
-    modules = {f"{d}/{p.stem}" for d in ("src/figure", "src/pose", "src/draw", "src/export",
-                                          "src/interact", "src/daemon", "devices")
-               for p in (ROOT / d).glob("*.[ch]")}
+    modules = {f"{d}/{p.stem}" for d in ("src/figure", "src/pose", "src/assess", "src/draw",
+                                          "src/export", "src/interact", "src/fit", "src/daemon",
+                                          "devices")
+               for p in (ROOT / d).glob("*.[ch]")} | \
+        {f"src/fit/{p.stem}" for p in (ROOT / "src/fit").glob("*.cc")}
     assert "src/figure/" in text and not bad, f"docs/layout.md names files that are not: {bad}"
     assert not modules - named, \
         f"docs/layout.md does not name these modules: {sorted(modules - named)}"
