@@ -140,8 +140,10 @@ def test_reach_takes_the_posture_and_undo_gives_the_old_one_back(daemon):
         assert math.dist(palm(c, "jack")[0], t) <= TOL_POS
         got = c.request("get posture jack")["posture"]
         assert set(got) == set(v["posture"])
+        # the loop's frames between the reply and this request may run the behaviours,
+        # which hold the taken posture but polish it by nanoradians (2.2e-9 seen)
         for j, vals in v["posture"].items():
-            assert got[j] == pytest.approx(vals, abs=1e-9), j
+            assert got[j] == pytest.approx(vals, abs=1e-6), j
         c.request("settle frames=300")
         assert math.dist(palm(c, "jack")[0], t) <= TOL_POS
         assert c.request("status")["posture"] != h0
