@@ -25,6 +25,7 @@
 struct kms_times_summary; /* draw/kms_pick.h */
 struct assess_live;       /* daemon/assess_live.h */
 struct loads_live;        /* daemon/loads_live.h */
+struct envelopes;         /* daemon/envelopes.h */
 
 #define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
 #define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
@@ -230,6 +231,12 @@ struct daemon {
 	struct assess_live *assess_live;
 	/* each figure's loads analysis now (loads_live.h); NULL until first asked */
 	struct loads_live *loads_live;
+	/*
+	 * The reach envelopes kept (analyze reach; envelopes.h): derived
+	 * results, not in sessions, undo or the journal; those of a figure that
+	 * goes go with it. NULL until the first is made.
+	 */
+	struct envelopes *envelopes;
 	/* commands that changed something, counted: what a cached analysis was made under */
 	uint64_t mutations;
 };

@@ -19,6 +19,7 @@
 #include "daemon/assess_live.h"
 #include "daemon/loads_live.h"
 #include "daemon/cmd.h"
+#include "daemon/envelopes.h"
 #include "daemon/kiosk_route.h"
 #include "daemon/notify.h"
 #include "devices/can_dev.h"
@@ -823,6 +824,9 @@ loop_teardown(struct loop *L)
 	daemon_picks_free(&L->d);
 	assess_live_free(&L->d);
 	loads_live_free(&L->d);
+	if (L->d.envelopes)
+		envelopes_clear(L->d.envelopes);
+	free(L->d.envelopes);
 	daemon_text_clear(&L->d.file_read); /* the last command's file, if it read one */
 	daemon_text_clear(&L->d.file_given);
 	kiosk_free(L->modes.kiosk);
