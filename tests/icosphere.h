@@ -17,7 +17,7 @@ struct icosphere {
 };
 
 /* the midpoint vertex of edge (a, b), made once: a linear search is fine at test sizes */
-static int
+static inline int
 ico_mid(struct icosphere *s, int *edges, int *nedge, int a, int b)
 {
 	int lo = a < b ? a : b, hi = a < b ? b : a;
@@ -37,7 +37,7 @@ ico_mid(struct icosphere *s, int *edges, int *nedge, int a, int b)
 	return s->nvert++;
 }
 
-static void
+static inline void
 icosphere_make(struct icosphere *s, int levels, double r, const double c[3])
 {
 	const float t = (1 + sqrtf(5)) / 2;
@@ -89,7 +89,7 @@ icosphere_make(struct icosphere *s, int levels, double r, const double c[3])
 }
 
 /* the enclosed volume by the divergence theorem: a sum of signed tetrahedra */
-static double
+static inline double
 icosphere_volume(const float *v, const int *tri, int ntri)
 {
 	double vol = 0;
@@ -102,7 +102,7 @@ icosphere_volume(const float *v, const int *tri, int ntri)
 	return vol;
 }
 
-static void
+static inline void
 icosphere_free(struct icosphere *s)
 {
 	free(s->vert);
