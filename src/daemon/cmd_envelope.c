@@ -59,8 +59,9 @@ read_targets(struct cmd_ctx *c, const char *list, struct analyze *a)
 	if (snprintf(buf, sizeof buf, "%s", list) >= (int)sizeof buf)
 		return cmd_fail(c, "bad-argument", "targets= is too long");
 	a->ntarget = 0;
-	char *save = NULL;
-	for (char *t = strtok_r(buf, ";", &save); t; t = strtok_r(NULL, ";", &save)) {
+	for (char *t = buf, *end; t; t = end) {
+		if ((end = strchr(t, ';')))
+			*end++ = '\0';
 		if (a->ntarget == TARGETS_MAX)
 			return cmd_fail(c, "bad-argument", "at most %d targets", TARGETS_MAX);
 		if (words_list(t, UNIT_LENGTH, 3, a->target[a->ntarget]) < 0)
