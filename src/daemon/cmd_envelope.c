@@ -176,6 +176,9 @@ read_analyze(struct cmd_ctx *c, struct analyze *a)
 		return cmd_fail(c, "bad-argument", "envelope=yes|no");
 	if (env && !strcmp(env, "no") && !targets)
 		return cmd_fail(c, "bad-argument", "envelope=no asks for targets=");
+	if (env && !strcmp(env, "no") && a->req.comfort)
+		return cmd_fail(c, "bad-argument", "comfort=on computes the envelope (the comfort zone "
+				"is part of it): not with envelope=no");
 	/* comfort with targets: whether each lies in the comfort zone, which needs the zone */
 	a->want_envelope = !targets || (env && !strcmp(env, "yes")) || a->req.comfort;
 	a->name = cmd_key(c, "name");

@@ -13,6 +13,7 @@
 #include "daemon/loads_live.h"
 #include "daemon/family.h"
 #include "daemon/tint.h"
+#include "draw/pack.h"
 #include "draw/sink.h"
 #include "draw/tiles.h"
 #include "pose/eyeview.h"
@@ -315,11 +316,20 @@ add_loads(struct drawlist *dl, const struct env *e, int fig)
 	}
 }
 
+static const struct envelope_mesh no_mesh; /* an emptied slot's */
+
 /* envelope mesh m into the renderer under *id (an id plus 1; 0: a new one); 0, or -1 */
 static int
 envelope_upload(struct scene *sc, int *id, const struct envelope_mesh *m, const char *name)
 {
 	char err[256];
+	/* the frame packs every instance into one buffer (pack.h): a surface taking more than
+	 * half of it would push the figures out, so it is not drawn */
+	if (m->nvert > PACK_MAX_VERT / 2 || 3L * m->ntri > PACK_MAX_IDX / 2) {
+		fprintf(stderr, "postured: envelope %s not drawn: %d vertices, %d triangles, more "
+			"than a frame holds (a coarser resolution draws)\n", name, m->nvert, m->ntri);
+		m = &no_mesh;
+	}
 	int got = render_set_mesh(sc->r, *id - 1, m->vert, m->normal, m->nvert, m->tri, m->ntri, err,
 				  sizeof err);
 	if (got < 0) {
@@ -340,7 +350,6 @@ static void
 add_envelopes(struct scene *sc, const struct daemon *d)
 {
 	static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
-	static const struct envelope_mesh none = { 0 };
 	const struct envelopes *s = d->envelopes;
 	for (int k = 0; k < ENVELOPES_MAX; k++) {
 		const struct envelope_entry *x = s && s->slot[k].used ? &s->slot[k] : NULL;
@@ -349,7 +358,7 @@ add_envelopes(struct scene *sc, const struct daemon *d)
 			if (sc->envelope_serial[k])
 				for (int i = 0; i < 2; i++)
 					if (id[i])
-						envelope_upload(sc, &id[i], &none, "");
+						envelope_upload(sc, &id[i], &no_mesh, "");
 			sc->envelope_serial[k] = 0;
 			continue;
 		}
@@ -360,7 +369,7 @@ add_envelopes(struct scene *sc, const struct daemon *d)
 			sc->envelope_serial[k] = x->serial; /* a failure is said once, not each frame */
 			for (int i = 0; bad && i < 2; i++) /* nothing drawn of it, ids kept */
 				if (id[i])
-					envelope_upload(sc, &id[i], &none, x->name);
+					envelope_upload(sc, &id[i], &no_mesh, x->name);
 		}
 		if (x->hidden || !id[0])
 			continue;
