@@ -8,7 +8,8 @@ we did not write (trimesh):
 - every sampled envelope vertex is reached (palm within 1 mm, the solved posture within
   every joint's limits), and the point two grid steps outward along the surface's normal
   is not;
-- the files are watertight and hold the volume and bounds the reply gave;
+- the files are watertight and hold the volume and bounds the reply gave, and the glTF
+  ones pass the Khronos validator;
 - the body's envelope contains the arm's (a generalised winding number, computed here);
 - the verdicts for targets are `can reach`'s, for one figure and for each manikin of a
   family, and the family's answer lists who reaches each target;
@@ -118,6 +119,20 @@ def test_the_files_hold_the_surface_the_reply_describes(daemon):
             c.request("export envelope probe.left.arm env.stl part=comfort")
         with pytest.raises(PostureError):
             c.request("export envelope nothing env.stl")
+
+
+def test_the_khronos_validator_finds_nothing(daemon):
+    """The glTF files (binary and text, with the comfort zone as a second mesh) pass the
+    Khronos glTF validator with no error, warning, info or hint."""
+    from test_export_gltf import validate
+    with daemon.client() as c:
+        c.request("load human as probe")
+        c.request(f"analyze reach probe hand=right mode=arm resolution={RES} comfort=on")
+        for file in ("env.glb", "env.gltf"):
+            assert c.request(f"export envelope probe.right.arm {file}")["meshes"] == 2
+            report = validate(daemon.state_dir / file)
+            assert report["issues"]["messages"] == [], (file, report["issues"])
+            assert report["issues"]["numErrors"] == report["issues"]["numWarnings"] == 0
 
 
 def test_vertices_are_reached_and_points_outside_are_not(daemon):
