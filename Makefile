@@ -288,7 +288,8 @@ BENCH_STANDALONE := $(BUILD)/rel/bench/ik_body $(BUILD)/rel/bench/behave_bench $
 	$(BUILD)/rel/bench/pick_bench $(BUILD)/rel/bench/hemi_bench $(BUILD)/rel/bench/display_bench \
 	$(BUILD)/rel/bench/family_bench $(BUILD)/rel/bench/anthro_bench $(BUILD)/rel/bench/assess_bench \
 	$(BUILD)/rel/bench/assess_live_bench $(BUILD)/rel/bench/tint_bench $(BUILD)/rel/bench/lowback_bench \
-	$(BUILD)/rel/bench/loads_bench $(BUILD)/rel/bench/loads_live_bench $(BUILD)/rel/bench/reach_bench
+	$(BUILD)/rel/bench/loads_bench $(BUILD)/rel/bench/loads_live_bench $(BUILD)/rel/bench/reach_bench \
+	$(BUILD)/rel/bench/envelope_bench
 
 bench: deps $(rel_BENCH) $(rel_TOOLS) $(rel_GUEST) $(PEER_BENCH)
 	@set -e; for b in $(BENCH_STANDALONE); do echo "== $$b"; $$b; done

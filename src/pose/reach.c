@@ -171,6 +171,7 @@ reach_solve(struct reach *r, const struct model *m, const struct state *s,
 	double dv[3] = { palm->p[0] - q->target[0], palm->p[1] - q->target[1],
 			 palm->p[2] - q->target[2] };
 	res->distance = sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+	memcpy(res->palm, palm->p, sizeof res->palm);
 	if (q->oriented) { /* the angle of palm^T goal from its trace */
 		double tr = 0;
 		for (int i = 0; i < 9; i++)

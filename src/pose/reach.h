@@ -41,6 +41,7 @@ struct reach_request {
 struct reach_result {
 	int reached;     /* distance <= REACH_TOL_POS (and angle <= REACH_TOL_ORI when oriented) */
 	double distance; /* m: palm to target after the solve */
+	double palm[3];  /* where the palm ended, world frame: a point the hand reaches */
 	double angle;    /* rad: palm axes to rot (0 when not oriented) */
 	double margin;   /* m: the centre of mass's stability margin in the reached posture */
 	int limiting[REACH_LIMITING_MAX]; /* joints with a moved dof resting on a limit */
