@@ -13,6 +13,7 @@
 #include "daemon/envelopes.h"
 #include "daemon/family.h"
 #include "daemon/words.h"
+#include "figure/model.h"
 #include "pose/reach.h"
 
 #define TARGETS_MAX 32
@@ -75,41 +76,6 @@ read_targets(struct cmd_ctx *c, const char *list, struct analyze *a)
 	return 0;
 }
 
-/* "comfort.JOINT.DOF=LO,HI" (degrees): a default comfort range replaced; 0, or -1 */
-static int
-read_comfort_range(struct cmd_ctx *c, const char *w, struct envelope_comfort *cr)
-{
-	size_t klen;
-	const char *v = words_value(w, &klen);
-	char key[64];
-	if (klen >= sizeof key)
-		return cmd_fail(c, "bad-argument", "'%.60s': comfort.JOINT.DOF=LO,HI", w);
-	memcpy(key, w, klen);
-	key[klen] = '\0';
-	char *joint = key + strlen("comfort."), *dot = strrchr(joint, '.'), *end;
-	if (!dot || dot == joint)
-		return cmd_fail(c, "bad-argument", "'%.60s': comfort.JOINT.DOF=LO,HI", w);
-	*dot = '\0';
-	long dof = strtol(dot + 1, &end, 10);
-	double lh[2];
-	if (*end || end == dot + 1 || words_list(v, UNIT_ANGLE, 2, lh) < 0 || lh[0] > lh[1])
-		return cmd_fail(c, "bad-argument", "'%.60s': comfort.JOINT.DOF=LO,HI with LO <= HI", w);
-	for (int i = 0; i < cr->n; i++)
-		if (!strcmp(cr->r[i].joint, joint) && cr->r[i].dof == dof) {
-			/* words_list gives radians for an angle; the ranges are degrees */
-			cr->r[i].lo = lh[0] * 180 / 3.14159265358979323846;
-			cr->r[i].hi = lh[1] * 180 / 3.14159265358979323846;
-			return 0;
-		}
-	char have[400] = "";
-	for (int i = 0; i < cr->n; i++) {
-		size_t n = strlen(have);
-		snprintf(have + n, sizeof have - n, "%s%s.%d", i ? ", " : "", cr->r[i].joint,
-			 cr->r[i].dof);
-	}
-	return cmd_fail(c, "bad-argument", "no comfort range %s.%ld (there are: %s)", joint, dof, have);
-}
-
 /* the request's words after the figure; 0, or -1 with the error set */
 static int
 read_analyze(struct cmd_ctx *c, struct analyze *a)
@@ -120,7 +86,7 @@ read_analyze(struct cmd_ctx *c, struct analyze *a)
 	a->req.resolution = ENVELOPE_RES_DEFAULT;
 	envelope_comfort_default(&a->req.comfort_ranges);
 	static const char *const keys[] = { "hand", "mode", "balance", "resolution", "comfort",
-					    "targets", "name", "envelope" };
+					    "ranges", "targets", "name", "envelope" };
 	for (int i = 1; i < c->argc; i++) {
 		const char *w = c->argv[i];
 		size_t k = 0;
@@ -128,11 +94,6 @@ read_analyze(struct cmd_ctx *c, struct analyze *a)
 			k++;
 		if (k < sizeof keys / sizeof *keys)
 			continue;
-		if (!strncmp(w, "comfort.", strlen("comfort.")) && strchr(w, '=')) {
-			if (read_comfort_range(c, w, &a->req.comfort_ranges) < 0)
-				return -1;
-			continue;
-		}
 		return cmd_fail(c, "bad-argument", "unexpected '%.60s'", w);
 	}
 	const char *hand = cmd_key(c, "hand");
@@ -165,9 +126,12 @@ read_analyze(struct cmd_ctx *c, struct analyze *a)
 	if (comfort && strcmp(comfort, "on") && strcmp(comfort, "off"))
 		return cmd_fail(c, "bad-argument", "comfort=on|off");
 	a->req.comfort = comfort && !strcmp(comfort, "on");
-	for (int i = 1; i < c->argc; i++)
-		if (!strncmp(c->argv[i], "comfort.", strlen("comfort.")) && !a->req.comfort)
-			return cmd_fail(c, "bad-argument", "comfort ranges are for comfort=on");
+	const char *ranges = cmd_key(c, "ranges");
+	char err[256];
+	if (ranges && !a->req.comfort)
+		return cmd_fail(c, "bad-argument", "ranges= are the comfort zone's: for comfort=on");
+	if (ranges && envelope_comfort_parse(ranges, &a->req.comfort_ranges, err, sizeof err) < 0)
+		return cmd_fail(c, "bad-argument", "ranges=JOINT.DOF=LO,HI;... (degrees): %s", err);
 	const char *targets = cmd_key(c, "targets");
 	if (targets && read_targets(c, targets, a) < 0)
 		return -1;
@@ -176,11 +140,7 @@ read_analyze(struct cmd_ctx *c, struct analyze *a)
 		return cmd_fail(c, "bad-argument", "envelope=yes|no");
 	if (env && !strcmp(env, "no") && !targets)
 		return cmd_fail(c, "bad-argument", "envelope=no asks for targets=");
-	if (env && !strcmp(env, "no") && a->req.comfort)
-		return cmd_fail(c, "bad-argument", "comfort=on computes the envelope (the comfort zone "
-				"is part of it): not with envelope=no");
-	/* comfort with targets: whether each lies in the comfort zone, which needs the zone */
-	a->want_envelope = !targets || (env && !strcmp(env, "yes")) || a->req.comfort;
+	a->want_envelope = !targets || (env && !strcmp(env, "yes"));
 	a->name = cmd_key(c, "name");
 	if (a->name && !envelope_name_ok(a->name))
 		return cmd_fail(c, "bad-argument", "name=NAME: letters, digits, '_', '.', '-', "
@@ -298,49 +258,78 @@ compute_one(struct cmd_ctx *c, const struct analyze *a, int fig, struct envelope
 	return 0;
 }
 
+/* one target's solve on a copy of figure f's posture; 0, or -1 with the error set */
+static int
+solve(struct cmd_ctx *c, struct reach *r, const struct model *m, const struct env_figure *f,
+      const struct analyze *a, int t, struct reach_result *res)
+{
+	const struct behave *b = f->behave;
+	struct reach_request q = { .side = a->req.side, .mode = a->req.mode,
+				   .balance = a->req.balance };
+	memcpy(q.target, a->target[t], sizeof q.target);
+	if (reach_solve(r, m, f->state, b ? &b->p : NULL, b ? b->mass : NULL, b ? b->nmass : 0, &q,
+			res) < 0)
+		return cmd_fail(c, "bad-number", "the targets must be finite");
+	return 0;
+}
+
 /*
  * Each target's verdict for figure fig: reach_solve on a copy (the posture
- * now; the reach object allocates once), reached or the distance the palm
- * stays short by; with the comfort zone e, whether it lies inside it.
+ * now; can reach's solve exactly), reached or the distance the palm stays
+ * short by. With comfort=on, the same solve again with the joints held
+ * within the comfort ranges (the model's limits narrowed as the comfort
+ * zone's are, envelope_comfort_apply): comfortable when that reaches too.
  * NULL with the error set.
  */
 static json_t *
-verdicts(struct cmd_ctx *c, const struct analyze *a, int fig, const struct envelope *e,
-	 int *reached)
+verdicts(struct cmd_ctx *c, const struct analyze *a, int fig, int *reached)
 {
 	const struct env_figure *f = &c->d->env.fig[fig];
-	struct reach *r = reach_make(f->model);
-	if (!r) {
-		cmd_fail(c, "bad-argument", "%s has no hands and feet to reach with", f->name);
+	char err[256];
+	struct model *cm = a->req.comfort ? model_copy(f->model) : NULL;
+	if (a->req.comfort && !cm) {
+		cmd_fail(c, "internal", "out of memory");
 		return NULL;
 	}
-	const struct behave *b = f->behave;
+	if (cm && envelope_comfort_apply(&a->req.comfort_ranges, cm, a->req.side, err,
+					 sizeof err) < 0) {
+		model_free(cm);
+		cmd_fail(c, "bad-argument", "%s: comfort ranges: %s", f->name, err);
+		return NULL;
+	}
+	struct reach *r = reach_make(f->model), *rc = cm ? reach_make(cm) : NULL;
 	json_t *list = json_array();
+	if (!r || (cm && !rc)) {
+		cmd_fail(c, "bad-argument", "%s has no hands and feet to reach with", f->name);
+		goto fail;
+	}
 	for (int t = 0; t < a->ntarget; t++) {
-		struct reach_request q = { .side = a->req.side, .mode = a->req.mode,
-					   .balance = a->req.balance };
-		memcpy(q.target, a->target[t], sizeof q.target);
-		struct reach_result res;
-		if (reach_solve(r, f->model, f->state, b ? &b->p : NULL, b ? b->mass : NULL,
-				b ? b->nmass : 0, &q, &res) < 0) {
-			reach_free(r);
-			json_decref(list);
-			cmd_fail(c, "bad-number", "the targets must be finite");
-			return NULL;
-		}
+		struct reach_result res, com;
+		if (solve(c, r, f->model, f, a, t, &res) < 0 || (cm && solve(c, rc, cm, f, a, t, &com) < 0))
+			goto fail;
 		json_t *v = json_object();
 		json_object_set_new(v, "target", cmd_vec(a->target[t], 3));
 		json_object_set_new(v, "reached", json_boolean(res.reached));
 		json_object_set_new(v, "shortfall", json_real(res.reached ? 0.0 : res.distance));
 		json_object_set_new(v, "distance", json_real(res.distance));
-		if (e && e->req.comfort)
-			json_object_set_new(v, "comfortable",
-					    json_boolean(envelope_mesh_contains(&e->comfort, a->target[t])));
+		if (cm) {
+			json_object_set_new(v, "comfortable", json_boolean(com.reached));
+			json_object_set_new(v, "comfort_shortfall",
+					    json_real(com.reached ? 0.0 : com.distance));
+		}
 		json_array_append_new(list, v);
 		reached[t] = res.reached;
 	}
 	reach_free(r);
+	reach_free(rc);
+	model_free(cm);
 	return list;
+fail:
+	reach_free(r);
+	reach_free(rc);
+	model_free(cm);
+	json_decref(list);
+	return NULL;
 }
 
 /* the figures' replies, with each one's envelope (es, or NULL) and verdicts; NULL with the error set */
@@ -361,7 +350,7 @@ replies(struct cmd_ctx *c, const struct analyze *a, const int *slot, int n, cons
 				      side_names[a->req.side], "mode", mode_names[a->req.mode]);
 		}
 		if (a->ntarget) {
-			json_t *v = verdicts(c, a, slot[i], es ? &es[i] : NULL, reached[i]);
+			json_t *v = verdicts(c, a, slot[i], reached[i]);
 			if (!v) {
 				json_decref(o);
 				json_decref(figs);

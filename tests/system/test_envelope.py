@@ -256,8 +256,9 @@ def test_bad_requests_change_nothing(daemon_factory):
                "analyze reach probe hand=right resolution=30cm",
                "analyze reach probe hand=right resolution=fine",
                "analyze reach probe hand=right comfort=maybe",
-               "analyze reach probe hand=right comfort.shoulder.0=0,1",
-               "analyze reach probe hand=right comfort=on comfort.nojoint.0=0,1",
+               "analyze reach probe hand=right ranges=shoulder.0=0,10",
+               "analyze reach probe hand=right comfort=on ranges=nojoint.0=0,10",
+               "analyze reach probe hand=right comfort=on ranges=shoulder.0=10",
                "analyze reach probe hand=right targets=0.1,1.2",
                "analyze reach probe hand=right targets=0.1,1.2,0.3;;",
                "analyze reach probe hand=right targets=0.1,nan,0.3",
@@ -337,16 +338,24 @@ def test_the_comfort_zone(daemon):
         assert zone.volume == pytest.approx(z["volume"], rel=1e-5)
         assert np.all(winding(zone.vertices[::7], reach.vertices, reach.faces) > 0.5)
         r0 = z["ranges"][0]
-        key = f"comfort.{r0['joint']}.{r0['dof']}"
+        key = f"{r0['joint']}.{r0['dof']}"
         lo, hi = r0["lo"], (r0["lo"] + r0["hi"]) / 2  # a narrower range: a smaller zone
         e2 = c.request(f"analyze reach probe hand=right mode=arm resolution={RES} comfort=on "
-                       f"{key}={lo}deg,{hi}deg")
+                       f"ranges={key}={lo},{hi}")
         r1 = e2["comfort"]["ranges"][0]
         assert r1["source"] == "set" and r1["lo"] == pytest.approx(lo) and r1["hi"] == pytest.approx(hi)
         assert e2["comfort"]["volume"] <= z["volume"]
-        # targets with comfort=on: inside the zone is comfortable
-        pts = [zone.vertices[0] * 0.0 + zone.centroid, reach.bounds[1] + 0.5]
-        t = c.request(f"analyze reach probe hand=right mode=arm resolution={RES} comfort=on "
-                      f"targets={';'.join(xyz(p) for p in pts)}")
-        assert [v["comfortable"] for v in t["targets"]] == \
-            [bool(winding(p, zone.vertices, zone.faces)[0] > 0.5) for p in pts]
+        # targets with comfort=on: reached within the comfort ranges or not, no envelope made;
+        # the zone's vertices are; envelope vertices two grid steps from the zone are not
+        rng = random.Random(9)
+        inside = [zone.vertices[i] for i in rng.sample(range(len(zone.vertices)), 4)]
+        far = [v for v in reach.vertices
+               if np.min(np.linalg.norm(zone.vertices - v, axis=1)) > 2 * RES
+               and winding(v, zone.vertices, zone.faces)[0] < 0.5]
+        far = rng.sample(far, 4)
+        t = c.request(f"analyze reach probe hand=right mode=arm comfort=on "
+                      f"targets={';'.join(xyz(p) for p in inside + far)}")
+        assert "volume" not in t
+        assert [v["comfortable"] for v in t["targets"]] == [True] * 4 + [False] * 4
+        assert all(v["reached"] for v in t["targets"])
+        assert all(v["comfort_shortfall"] > RES for v in t["targets"][4:])
