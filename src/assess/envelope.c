@@ -17,6 +17,11 @@
 #include "figure/human_data.h"
 #include "figure/kin.h"
 
+/* m: a point counts as reached when the palm ends within this of it: a quarter of "can
+ * reach"'s tolerance, so that a vertex "can reach" solves again is reached within its
+ * own, whichever way the solver comes at it */
+#define ENVELOPE_TOL (0.25 * REACH_TOL_POS)
+
 static double
 now_s(void)
 {
@@ -91,24 +96,104 @@ check_resolution(const struct envelope_request *req, char *err, size_t errlen)
 
 struct human_thr {
 	struct reach *r;
+	struct state *w; /* a warm start's posture */
+	const int *dofs; /* the moved dofs a posture holds */
+	int nq;
+	double tol;
 	const struct model *m;
 	const struct state *s;
 	const struct behave_params *p;
 	const struct point_mass *pm;
 	int n;
-	struct reach_request q;
+	struct reach_request q, qa; /* the request's mode, and the arm's */
 };
 
-static int
-human_solve(void *thr, const double p[3], double dest[3])
+static double
+dist3(const double *a, const double *b)
 {
-	struct human_thr *h = thr;
+	return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+		    (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* one solve of request q toward p from start; the palm into dest */
+static int
+solve_once(struct human_thr *h, struct reach_request *q, const struct state *start,
+	   const double p[3], double dest[3])
+{
 	struct reach_result res;
-	memcpy(h->q.target, p, sizeof h->q.target);
-	if (reach_solve(h->r, h->m, h->s, h->p, h->pm, h->n, &h->q, &res) < 0)
+	memcpy(q->target, p, sizeof q->target);
+	if (reach_solve(h->r, h->m, start, h->p, h->pm, h->n, q, &res) < 0)
 		return -1;
 	memcpy(dest, res.palm, sizeof res.palm);
 	return 0;
+}
+
+static int
+human_solve(void *thr, const double p[3], const float *q0, double dest[3], float *q_out)
+{
+	struct human_thr *h = thr;
+	const struct state *start = h->s;
+	if (q0) {
+		state_copy(h->m, h->s, h->w);
+		for (int i = 0; i < h->nq; i++)
+			h->w->q[h->dofs[i]] = q0[i];
+		kin_update(h->m, h->w);
+		start = h->w;
+	}
+	if (solve_once(h, &h->q, start, p, dest) < 0)
+		return -1;
+	const struct state *end = reach_posture(h->r);
+	for (int i = 0; q_out && i < h->nq; i++)
+		q_out[i] = (float)end->q[h->dofs[i]];
+	if (h->q.mode == REACH_ARM || dist3(dest, p) <= h->tol)
+		return 0;
+	/* the torso or the body stuck short: what the arm alone reaches they reach too, so
+	 * from the arm's reaching posture (the rest as it stands) the whole again */
+	double arm_end[3], end2[3];
+	if (solve_once(h, &h->qa, h->s, p, arm_end) < 0)
+		return -1;
+	if (dist3(arm_end, p) > h->tol) {
+		/* the nearer of the two is the better bound on the distance to the set */
+		if (dist3(arm_end, p) < dist3(dest, p))
+			memcpy(dest, arm_end, sizeof arm_end);
+		return 0;
+	}
+	state_copy(h->m, reach_posture(h->r), h->w);
+	kin_update(h->m, h->w);
+	if (solve_once(h, &h->q, h->w, p, end2) < 0)
+		return -1;
+	if (dist3(end2, p) >= dist3(dest, p))
+		return 0;
+	memcpy(dest, end2, sizeof end2);
+	end = reach_posture(h->r);
+	for (int i = 0; q_out && i < h->nq; i++)
+		q_out[i] = (float)end->q[h->dofs[i]];
+	return 0;
+}
+
+/* the dofs mode moves for hand side: the arm's from the clavicle, the spine's for the
+ * torso, every body dof but the eyes' for the body; returns their count */
+static int
+moved_dofs(const struct model *m, int side, enum reach_mode mode, int *dest)
+{
+	int n = 0;
+	for (int j = 0; j < m->njnt; j++) {
+		const char *name = m->jnt_name[j];
+		int take;
+		if (mode == REACH_BODY) {
+			take = strncmp(name, "eye", 3) != 0;
+		} else {
+			take = !strncmp(name, "spine_", 6) && mode == REACH_TORSO;
+			static const char *const arm[] = { "clavicle", "shoulder", "elbow", "wrist" };
+			for (int a = 0; a < 4 && !take; a++) {
+				size_t l = strlen(arm[a]);
+				take = !strncmp(name, arm[a], l) && !strcmp(name + l, human_side_sfx[side]);
+			}
+		}
+		for (int d = 0; take && d < m->jnt_ndof[j]; d++)
+			dest[n++] = m->jnt_dof0[j] + d;
+	}
+	return n;
 }
 
 /* the surface for model m (the human, or its copy with the comfort limits) */
@@ -119,17 +204,35 @@ human_surface(const struct model *m, const struct state *s, const struct behave_
 {
 	struct env_oracle o = { .nthreads = thread_count(req->threads),
 				.solve = human_solve,
-				.tol = REACH_TOL_POS };
+				.tol = ENVELOPE_TOL };
+	/* the arm's field from the standing posture, as "can reach" solves; the torso and
+	 * the body are 10 and 200 times dearer so: from a neighbour's posture */
+	o.warm_field = req->mode != REACH_ARM;
+	int *dofs = malloc((size_t)m->ndof * sizeof *dofs);
+	if (!dofs) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	o.nq = moved_dofs(m, req->side, req->mode, dofs);
 	struct human_thr thr[ENVELOPE_THREADS_MAX];
 	int r = 0, made = 0;
 	for (; made < o.nthreads; made++) {
 		struct human_thr *h = &thr[made];
-		*h = (struct human_thr){ .r = reach_make(m), .m = m, .s = s, .p = p, .pm = pm, .n = n };
-		if (!h->r)
+		*h = (struct human_thr){ .r = reach_make(m), .w = state_make(m), .dofs = dofs,
+					 .nq = o.nq, .m = m, .s = s, .p = p, .pm = pm, .n = n };
+		if (!h->r || !h->w) {
+			reach_free(h->r);
+			state_free(h->w);
 			break;
+		}
 		h->q.side = req->side;
 		h->q.mode = req->mode;
 		h->q.balance = req->balance;
+		h->q.restarts = req->mode == REACH_ARM ? ENVELOPE_ARM_RESTARTS : 0;
+		h->qa = h->q;
+		h->qa.mode = REACH_ARM;
+		h->qa.restarts = ENVELOPE_ARM_RESTARTS;
+		h->tol = o.tol;
 		o.thr[made] = h;
 	}
 	if (made < o.nthreads) {
@@ -153,13 +256,24 @@ human_surface(const struct model *m, const struct state *s, const struct behave_
 		snprintf(err, errlen, "the reach solver refused the request");
 		r = -1;
 	}
+	/* the seed: where the palm is */
+	double seed[3];
+	if (!r) {
+		char name[32];
+		snprintf(name, sizeof name, "hand%s.palm", human_side_sfx[req->side]);
+		int site = model_find_site(m, name);
+		memcpy(seed, site >= 0 ? s->site_xf[site].p : centre, sizeof seed);
+	}
 	struct mc_mesh mesh;
 	if (!r)
-		r = env_surface(&o, lo, hi, req->resolution, &mesh, st, err, errlen);
+		r = env_surface(&o, lo, hi, seed, req->resolution, &mesh, st, err, errlen);
 	if (!r)
 		mesh_take(dest, &mesh);
-	for (int t = 0; t < made; t++)
+	for (int t = 0; t < made; t++) {
 		reach_free(thr[t].r);
+		state_free(thr[t].w);
+	}
+	free(dofs);
 	return r;
 }
 
@@ -227,18 +341,22 @@ struct chain_thr {
 };
 
 static int
-chain_solve(void *thr, const double p[3], double dest[3])
+chain_solve(void *thr, const double p[3], const float *q0, double dest[3], float *q_out)
 {
 	struct chain_thr *c = thr;
 	struct xform goal;
 	xform_identity(&goal);
 	memcpy(goal.p, p, sizeof goal.p);
 	state_copy(c->m, c->s, c->copy);
+	for (int d = 0; q0 && d < c->m->ndof; d++)
+		c->copy->q[d] = q0[d];
 	kin_update(c->m, c->copy);
 	if (ik_set_goal(c->ik, 0, &goal) < 0)
 		return -1;
 	ik_solve(c->ik, c->m, c->copy, &c->opt, NULL);
 	memcpy(dest, c->copy->site_xf[c->effector].p, 3 * sizeof *dest);
+	for (int d = 0; q_out && d < c->m->ndof; d++)
+		q_out[d] = (float)c->copy->q[d];
 	return 0;
 }
 
@@ -256,7 +374,8 @@ envelope_compute_chain(const struct model *m, const struct state *s, int effecto
 	}
 	struct env_oracle o = { .nthreads = thread_count(req->threads),
 				.solve = chain_solve,
-				.tol = REACH_TOL_POS };
+				.nq = m->ndof,
+				.tol = ENVELOPE_TOL };
 	struct chain_thr thr[ENVELOPE_THREADS_MAX];
 	struct ik_constraint_def d = ik_constraint_default_def();
 	d.effector_site = effector;
@@ -273,6 +392,12 @@ envelope_compute_chain(const struct model *m, const struct state *s, int effecto
 					 .s = s, .effector = effector, .opt = ik_default_options() };
 		c->opt.step_pos = c->opt.step_ori = 0;
 		c->opt.budget_us = 0;
+		/* a chain's solve can stop where a limit meets a singular turn (a twist the
+		 * wrong way, a tilt at zero): random restarts find the rest of the set, and a
+		 * short chain's solve is cheap enough to afford them */
+		c->opt.restarts = 8;
+		c->opt.restart_after = 20;
+		c->opt.settle_rel = 0;
 		if (!c->ik || !c->copy) {
 			snprintf(err, errlen, "out of memory");
 			r = -1;
@@ -292,7 +417,8 @@ envelope_compute_chain(const struct model *m, const struct state *s, int effecto
 	struct mc_mesh mesh;
 	struct env_stats st = { { 0, 0, 0 }, 0 };
 	if (!r)
-		r = env_surface(&o, lo, hi, req->resolution, &mesh, &st, err, errlen);
+		r = env_surface(&o, lo, hi, s->site_xf[effector].p, req->resolution, &mesh, &st,
+				err, errlen);
 	if (!r)
 		mesh_take(dest, &mesh);
 	for (int t = 0; t < made; t++) {

@@ -35,6 +35,9 @@
 #define ENVELOPE_RES_DEFAULT 0.02 /* m: the grid's step */
 #define ENVELOPE_RES_MIN 0.005
 #define ENVELOPE_RES_MAX 0.25
+/* the arm's solves: "can reach" with this many random restarts when stuck short of a
+ * point (pose/reach.h), so that a local minimum does not cut a piece off the envelope */
+#define ENVELOPE_ARM_RESTARTS 4
 
 struct envelope_request {
 	int side;             /* BEHAVE_LEFT or BEHAVE_RIGHT */

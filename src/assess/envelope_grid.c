@@ -16,7 +16,7 @@
 /* m: a cell at most this size with every corner inside, and no neighbour crossing the
  * surface, is taken as inside without solving its points (a pocket of unreachable
  * points smaller than this, away from the surface, is not looked for) */
-#define TRUST_CELL 0.08
+#define TRUST_CELL 0.16
 /* the grid's size, points (about 9 bytes each) */
 #define GRID_POINTS_MAX (24L << 20)
 
@@ -29,10 +29,12 @@ struct field {
 	double origin[3], step;
 	float *val;        /* distance - tol: <= 0 inside */
 	unsigned char *st; /* ST_ */
-	int *slot;         /* a solved point's row in near, else -1 */
+	int *slot;         /* a solved point's row in near and qs, else -1 */
+	int *src;          /* the row of the posture a solve near the point starts from, or -1 */
 	float *near;       /* 3 per solved point: where the effector ended */
+	float *qs;         /* nq per solved point: its posture */
 	long nnear, capnear;
-	long *list;        /* points to solve */
+	long *list;        /* points to solve, each with the point it starts from (or -1) */
 	long nlist, caplist;
 	long solves;
 };
@@ -41,8 +43,10 @@ struct field {
 
 struct batch {
 	const struct env_oracle *o;
-	const double *pts; /* 3 n */
-	double *ends;      /* 3 n */
+	const double *pts;     /* 3 n */
+	const float *const *q0; /* n starting postures (NULL: the starting posture), or NULL */
+	double *ends;          /* 3 n */
+	float *qout;           /* nq n, or NULL */
 	long n;
 	atomic_long next;
 	atomic_int fail;
@@ -64,7 +68,9 @@ work(void *arg)
 			break;
 		long i1 = i0 + 8 < b->n ? i0 + 8 : b->n;
 		for (long i = i0; i < i1; i++)
-			if (b->o->solve(w->thr, &b->pts[3 * i], &b->ends[3 * i]) < 0)
+			if (b->o->solve(w->thr, &b->pts[3 * i], b->q0 ? b->q0[i] : NULL,
+					&b->ends[3 * i],
+					b->qout ? &b->qout[(size_t)i * b->o->nq] : NULL) < 0)
 				atomic_store(&b->fail, 1);
 	}
 	return NULL;
@@ -72,9 +78,10 @@ work(void *arg)
 
 /* ends[i] = where the effector ended sent toward pts[i], on the oracle's threads */
 static int
-run_batch(const struct env_oracle *o, const double *pts, double *ends, long n)
+run_batch(const struct env_oracle *o, const double *pts, const float *const *q0, double *ends,
+	  float *qout, long n)
 {
-	struct batch b = { .o = o, .pts = pts, .ends = ends, .n = n };
+	struct batch b = { .o = o, .pts = pts, .q0 = q0, .ends = ends, .qout = qout, .n = n };
 	atomic_init(&b.next, 0);
 	atomic_init(&b.fail, 0);
 	pthread_t tid[ENVELOPE_THREADS_MAX];
@@ -104,19 +111,58 @@ point_pos(const struct field *f, long i, double p[3])
 }
 
 static int
-list_push(struct field *f, long i)
+list_push(struct field *f, long i, long from)
 {
 	if (f->nlist == f->caplist) {
 		long cap = f->caplist ? 2 * f->caplist : 4096;
-		long *l = realloc(f->list, (size_t)cap * sizeof *l);
+		long *l = realloc(f->list, (size_t)cap * 2 * sizeof *l);
 		if (!l)
 			return -1;
 		f->list = l;
 		f->caplist = cap;
 	}
-	f->list[f->nlist++] = i;
+	f->list[2 * f->nlist] = i;
+	f->list[2 * f->nlist + 1] = from;
+	f->nlist++;
 	f->st[i] = ST_QUEUED;
 	return 0;
+}
+
+/* the posture a solve from point `from` starts with, or NULL */
+static const float *
+start_posture(const struct field *f, long from)
+{
+	if (!f->o->nq || from < 0 || f->src[from] < 0)
+		return NULL;
+	return &f->qs[(size_t)f->src[from] * f->o->nq];
+}
+
+static double
+dist_pts(const struct field *f, long a, long b)
+{
+	double pa[3], pb[3];
+	point_pos(f, a, pa);
+	point_pos(f, b, pb);
+	return sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+		    (pa[2] - pb[2]) * (pa[2] - pb[2]));
+}
+
+/* the field's lower bound at p from q outside (1-Lipschitz), as a value; <= 0 proves nothing */
+static float
+lipschitz_value(const struct field *f, long p, long q)
+{
+	if ((f->st[q] != ST_SOLVED && f->st[q] != ST_BOUND) || f->val[q] <= 0)
+		return 0;
+	return (float)(f->val[q] - dist_pts(f, p, q));
+}
+
+/* p outside by q's bound: filled, its warm start q's */
+static void
+fill_bound(struct field *f, long p, long q, float v)
+{
+	f->val[p] = v;
+	f->st[p] = ST_BOUND;
+	f->src[p] = f->src[q];
 }
 
 /* solves the listed points and empties the list */
@@ -126,36 +172,47 @@ solve_list(struct field *f)
 	long n = f->nlist;
 	if (!n)
 		return 0;
-	double *pts = malloc((size_t)n * 6 * sizeof *pts);
-	if (!pts)
-		return -1;
-	double *ends = pts + 3 * n;
-	for (long k = 0; k < n; k++)
-		point_pos(f, f->list[k], &pts[3 * k]);
-	if (run_batch(f->o, pts, ends, n) < 0) {
-		free(pts);
-		return -2;
-	}
+	int nq = f->o->nq;
 	if (f->nnear + n > f->capnear) {
 		long cap = f->capnear ? f->capnear : 4096;
 		while (cap < f->nnear + n)
 			cap *= 2;
 		float *near = realloc(f->near, (size_t)cap * 3 * sizeof *near);
-		if (!near) {
-			free(pts);
+		if (near)
+			f->near = near;
+		float *qs = nq ? realloc(f->qs, (size_t)cap * nq * sizeof *qs) : NULL;
+		if (qs)
+			f->qs = qs;
+		if (!near || (nq && !qs))
 			return -1;
-		}
-		f->near = near;
 		f->capnear = cap;
 	}
+	double *pts = malloc((size_t)n * 6 * sizeof *pts);
+	const float **q0 = malloc((size_t)n * sizeof *q0);
+	if (!pts || !q0) {
+		free(pts);
+		free(q0);
+		return -1;
+	}
+	double *ends = pts + 3 * n;
 	for (long k = 0; k < n; k++) {
-		long i = f->list[k];
+		point_pos(f, f->list[2 * k], &pts[3 * k]);
+		q0[k] = f->o->warm_field ? start_posture(f, f->list[2 * k + 1]) : NULL;
+	}
+	int r = run_batch(f->o, pts, q0, ends, nq ? &f->qs[(size_t)f->nnear * nq] : NULL, n);
+	free(q0);
+	if (r < 0) {
+		free(pts);
+		return -2;
+	}
+	for (long k = 0; k < n; k++) {
+		long i = f->list[2 * k];
 		const double *p = &pts[3 * k], *e = &ends[3 * k];
 		double d = sqrt((p[0] - e[0]) * (p[0] - e[0]) + (p[1] - e[1]) * (p[1] - e[1]) +
 				(p[2] - e[2]) * (p[2] - e[2]));
 		f->val[i] = (float)(d - f->o->tol);
 		f->st[i] = ST_SOLVED;
-		f->slot[i] = (int)f->nnear;
+		f->slot[i] = f->src[i] = (int)f->nnear;
 		for (int c = 0; c < 3; c++)
 			f->near[3 * f->nnear + c] = (float)e[c];
 		f->nnear++;
@@ -195,21 +252,21 @@ cell_class(const struct field *f, int i, int j, int k, int s)
 	return dmax - sqrt(3.0) * s * f->step > f->o->tol ? CELL_OUT_PROVED : CELL_OUT;
 }
 
-/* the lower bound on the distance at p from the corners of the proved cell, as a value */
+/* the best lower bound on the field at p from the corners of the cell of stride s at
+ * (i, j, k), as a value (<= 0 proves nothing), and the corner it came from */
 static float
-bound_value(const struct field *f, long p, int i, int j, int k, int s)
+bound_value(const struct field *f, long p, int i, int j, int k, int s, long *corner)
 {
-	double pp[3], best = -1;
-	point_pos(f, p, pp);
+	float best = -1;
 	for (int c = 0; c < 8; c++) {
 		long q = idx(f, i + (c & 1) * s, j + ((c >> 1) & 1) * s, k + ((c >> 2) & 1) * s);
-		double qp[3];
-		point_pos(f, q, qp);
-		double r = sqrt((pp[0] - qp[0]) * (pp[0] - qp[0]) + (pp[1] - qp[1]) * (pp[1] - qp[1]) +
-				(pp[2] - qp[2]) * (pp[2] - qp[2]));
-		best = fmax(best, f->val[q] + f->o->tol - r);
+		float v = lipschitz_value(f, p, q);
+		if (v > best || c == 0) {
+			best = v;
+			*corner = q;
+		}
 	}
-	return (float)(best - f->o->tol);
+	return best;
 }
 
 /* cells of stride s: refine (solve the points of stride s/2 in them) or fill them */
@@ -256,18 +313,22 @@ refine_level(struct field *f, int s)
 					if (need[ci] != (pass == 0))
 						continue;
 					for (int d = 0; d < 27 && !err; d++) {
-						long p = idx(f, i * s + d % 3 * h, j * s + d / 3 % 3 * h,
-							     k * s + d / 9 * h);
+						int a = d % 3, b = d / 3 % 3, e = d / 9;
+						long p = idx(f, i * s + a * h, j * s + b * h, k * s + e * h);
 						if (f->st[p] != ST_NONE)
 							continue;
-						if (pass == 0) {
-							err = list_push(f, p);
-						} else if (cls[ci] == CELL_OUT_PROVED) {
-							f->val[p] = bound_value(f, p, i * s, j * s, k * s, s);
-							f->st[p] = ST_BOUND;
+						/* the nearest corner starts its solve */
+						long near = idx(f, i * s + a / 2 * s, j * s + b / 2 * s,
+								k * s + e / 2 * s), q;
+						float v = bound_value(f, p, i * s, j * s, k * s, s, &q);
+						if (v > 0) {
+							fill_bound(f, p, q, v);
+						} else if (pass == 0) {
+							err = list_push(f, p, near);
 						} else {
 							f->val[p] = (float)(-0.5 * f->step);
 							f->st[p] = ST_ASSUMED;
+							f->src[p] = f->src[near];
 						}
 					}
 				}
@@ -293,27 +354,30 @@ kuhn_neighbours(const struct field *f, long p, long dest[14])
 	return n;
 }
 
-/* a filled point across a change of sign is solved */
-static int
+/* a filled point across a change of sign is solved, from that neighbour's posture: returns
+ * the neighbour, or -1 */
+static long
 needs_solve(const struct field *f, long p)
 {
 	if (f->st[p] != ST_BOUND && f->st[p] != ST_ASSUMED)
-		return 0;
+		return -1;
 	long nb[14];
 	int n = kuhn_neighbours(f, p, nb), in = f->val[p] <= 0;
 	for (int q = 0; q < n; q++)
 		if ((f->val[nb[q]] <= 0) != in)
-			return 1;
-	return 0;
+			return nb[q];
+	return -1;
 }
 
 /* solves the filled points along the surface until none is left */
 static int
 trace_surface(struct field *f)
 {
-	for (long p = 0; p < f->npt; p++)
-		if (needs_solve(f, p) && list_push(f, p) < 0)
+	for (long p = 0; p < f->npt; p++) {
+		long from = needs_solve(f, p);
+		if (from >= 0 && list_push(f, p, from) < 0)
 			return -1;
+	}
 	long *last = NULL, nlast = 0;
 	while (f->nlist) {
 		free(last);
@@ -321,7 +385,8 @@ trace_surface(struct field *f)
 		last = malloc((size_t)nlast * sizeof *last);
 		if (!last)
 			return -1;
-		memcpy(last, f->list, (size_t)nlast * sizeof *last);
+		for (long k = 0; k < nlast; k++)
+			last[k] = f->list[2 * k];
 		int r = solve_list(f);
 		if (r < 0) {
 			free(last);
@@ -330,11 +395,13 @@ trace_surface(struct field *f)
 		for (long k = 0; k < nlast; k++) {
 			long nb[14];
 			int n = kuhn_neighbours(f, last[k], nb);
-			for (int q = 0; q < n; q++)
-				if (needs_solve(f, nb[q]) && list_push(f, nb[q]) < 0) {
+			for (int q = 0; q < n; q++) {
+				long from = needs_solve(f, nb[q]);
+				if (from >= 0 && list_push(f, nb[q], from) < 0) {
 					free(last);
 					return -1;
 				}
+			}
 		}
 	}
 	free(last);
@@ -380,9 +447,20 @@ place_vertices(struct field *f, struct mc_mesh *mesh, const long *edges)
 	if (!pts)
 		return -1;
 	double *ends = pts + 3 * n;
-	for (long v = 0; v < n; v++)
+	const float **q0 = malloc((size_t)n * sizeof *q0);
+	if (!q0) {
+		free(pts);
+		return -1;
+	}
+	/* as the field was solved: from the starting posture, or from the posture of the
+	 * outside point, whose palm ended near the vertex */
+	for (long v = 0; v < n; v++) {
 		vertex_guess(f, edges[2 * v], edges[2 * v + 1], &pts[3 * v]);
-	if (run_batch(f->o, pts, ends, n) < 0) {
+		q0[v] = f->o->warm_field ? start_posture(f, edges[2 * v + 1]) : NULL;
+	}
+	int r = run_batch(f->o, pts, q0, ends, NULL, n);
+	free(q0);
+	if (r < 0) {
 		free(pts);
 		return -2;
 	}
@@ -423,7 +501,7 @@ env_bounds(const struct env_oracle *o, const double centre[3], double step, doub
 			pts[3 * n + i] = centre[i] + 50.0 * v[i] / len;
 		n++;
 	}
-	if (run_batch(o, pts, ends, n) < 0)
+	if (run_batch(o, pts, NULL, ends, NULL, n) < 0)
 		return -1;
 	for (int i = 0; i < 3; i++)
 		lo[i] = hi[i] = centre[i];
@@ -441,19 +519,64 @@ env_bounds(const struct env_oracle *o, const double centre[3], double step, doub
 	return 0;
 }
 
+/* the coarse lattice (stride S) in waves outwards from the seed's nearest lattice point,
+ * each point from its neighbour towards the seed: proved outside by it, or solved from
+ * its posture */
+static int
+coarse_waves(struct field *f, const double seed[3], int S)
+{
+	int c[3], sc[3], maxw = 0;
+	for (int a = 0; a < 3; a++) {
+		c[a] = (f->n[a] - 1) / S + 1;
+		sc[a] = (int)lround((seed[a] - f->origin[a]) / (f->step * S));
+		sc[a] = sc[a] < 0 ? 0 : sc[a] >= c[a] ? c[a] - 1 : sc[a];
+		maxw = fmax(maxw, fmax(sc[a], c[a] - 1 - sc[a]));
+	}
+	for (int w = 0; w <= maxw; w++) {
+		for (int k = 0; k < c[2]; k++)
+			for (int j = 0; j < c[1]; j++)
+				for (int i = 0; i < c[0]; i++) {
+					int l[3] = { i, j, k }, from[3], wave = 0;
+					for (int a = 0; a < 3; a++) {
+						int d = l[a] - sc[a];
+						wave = abs(d) > wave ? abs(d) : wave;
+						from[a] = l[a] - (d > 0) + (d < 0);
+					}
+					if (wave != w)
+						continue;
+					long p = idx(f, i * S, j * S, k * S);
+					long q = w ? idx(f, from[0] * S, from[1] * S, from[2] * S) : -1;
+					float v = q >= 0 ? lipschitz_value(f, p, q) : 0;
+					if (v > 0)
+						fill_bound(f, p, q, v);
+					else if (list_push(f, p, q) < 0)
+						return -1;
+				}
+		int r = solve_list(f);
+		if (r < 0)
+			return r;
+	}
+	return 0;
+}
+
 static void
 field_free(struct field *f)
 {
 	free(f->val);
 	free(f->st);
 	free(f->slot);
+	free(f->src);
 	free(f->near);
+	free(f->qs);
 	free(f->list);
 }
 
-int
-env_surface(const struct env_oracle *o, const double lo[3], const double hi[3], double step,
-	    struct mc_mesh *dest, struct env_stats *st, char *err, size_t errlen)
+/* the surface within the box; 1 (and the box's faces the set reaches in clipped, -x +x -y
+ * +y -z +z) when the reachable set reaches its outermost layer */
+static int
+surface_in_box(const struct env_oracle *o, const double lo[3], const double hi[3],
+	       const double seed[3], double step, struct mc_mesh *dest, struct env_stats *st,
+	       int clipped[6], char *err, size_t errlen)
 {
 	memset(dest, 0, sizeof *dest);
 	struct field f = { .o = o, .step = step };
@@ -479,26 +602,32 @@ env_surface(const struct env_oracle *o, const double lo[3], const double hi[3], 
 	f.val = malloc((size_t)f.npt * sizeof *f.val);
 	f.st = calloc((size_t)f.npt, 1);
 	f.slot = malloc((size_t)f.npt * sizeof *f.slot);
-	int r = f.val && f.st && f.slot ? 0 : -1;
+	f.src = malloc((size_t)f.npt * sizeof *f.src);
+	int r = f.val && f.st && f.slot && f.src ? 0 : -1;
 	if (!r) {
 		memset(f.slot, 0xff, (size_t)f.npt * sizeof *f.slot);
-		for (int k = 0; k < f.n[2] && !r; k += S)
-			for (int j = 0; j < f.n[1] && !r; j += S)
-				for (int i = 0; i < f.n[0] && !r; i += S)
-					r = list_push(&f, idx(&f, i, j, k));
+		memset(f.src, 0xff, (size_t)f.npt * sizeof *f.src);
+		r = coarse_waves(&f, seed, S);
 	}
-	if (!r)
-		r = solve_list(&f);
 	for (int s = S; s >= 2 && !r; s /= 2)
 		r = refine_level(&f, s);
 	if (!r)
 		r = trace_surface(&f);
-	/* the outermost layer outside, so the surface is closed (the margin makes it so) */
+	/* the outermost layer must be outside, so that the surface is closed */
+	int nclip = 0;
 	for (long p = 0; p < f.npt && !r; p++) {
-		int i = (int)(p % f.nx), j = (int)(p % f.nxy / f.nx), k = (int)(p / f.nxy);
-		if ((i == 0 || j == 0 || k == 0 || i == f.n[0] - 1 || j == f.n[1] - 1 ||
-		     k == f.n[2] - 1) && f.val[p] <= 0)
-			f.val[p] = (float)step;
+		int l[3] = { (int)(p % f.nx), (int)(p % f.nxy / f.nx), (int)(p / f.nxy) };
+		for (int a = 0; a < 3 && f.val[p] <= 0; a++) {
+			if (l[a] == 0)
+				nclip += clipped[2 * a] = 1;
+			if (l[a] == f.n[a] - 1)
+				nclip += clipped[2 * a + 1] = 1;
+		}
+	}
+	if (!r && nclip) {
+		st->solves = f.solves;
+		field_free(&f);
+		return 1;
 	}
 	long *edges = NULL;
 	if (!r) {
@@ -519,4 +648,32 @@ env_surface(const struct env_oracle *o, const double lo[3], const double hi[3], 
 		return -1;
 	}
 	return 0;
+}
+
+int
+env_surface(const struct env_oracle *o, const double lo[3], const double hi[3],
+	    const double seed[3], double step, struct mc_mesh *dest, struct env_stats *st,
+	    char *err, size_t errlen)
+{
+	double l[3], h[3];
+	memcpy(l, lo, sizeof l);
+	memcpy(h, hi, sizeof h);
+	long solves = 0;
+	/* the box from the far solves can miss a direction the solver got stuck in: a side the
+	 * set reaches is moved out by half the box, and the field solved again */
+	for (int attempt = 0; attempt < 4; attempt++) {
+		int clipped[6] = { 0 };
+		int r = surface_in_box(o, l, h, seed, step, dest, st, clipped, err, errlen);
+		solves += st->solves;
+		st->solves = solves;
+		if (r <= 0)
+			return r;
+		for (int a = 0; a < 3; a++) {
+			double grow = 0.5 * (h[a] - l[a]) + 2 * step;
+			l[a] -= clipped[2 * a] ? grow : 0;
+			h[a] += clipped[2 * a + 1] ? grow : 0;
+		}
+	}
+	snprintf(err, errlen, "the reachable set does not fit the box it was searched in");
+	return -1;
 }

@@ -36,6 +36,9 @@ struct reach_request {
 	double rot[9];
 	enum reach_mode mode;
 	int balance;       /* REACH_BODY: 1 holds the centre of mass over the balance point */
+	int restarts;      /* 0 ("can reach"): one solve from the posture; n > 0: stuck short
+			      of the target, up to n more from random postures within the limits
+			      (the same ones for the same request), the best kept */
 };
 
 struct reach_result {
