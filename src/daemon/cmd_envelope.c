@@ -264,8 +264,10 @@ solve(struct cmd_ctx *c, struct reach *r, const struct model *m, const struct en
       const struct analyze *a, int t, struct reach_result *res)
 {
 	const struct behave *b = f->behave;
+	/* the envelope's own solve: the arm's with its restarts (envelope.h) */
 	struct reach_request q = { .side = a->req.side, .mode = a->req.mode,
-				   .balance = a->req.balance };
+				   .balance = a->req.balance,
+				   .restarts = a->req.mode == REACH_ARM ? ENVELOPE_ARM_RESTARTS : 0 };
 	memcpy(q.target, a->target[t], sizeof q.target);
 	if (reach_solve(r, m, f->state, b ? &b->p : NULL, b ? b->mass : NULL, b ? b->nmass : 0, &q,
 			res) < 0)
@@ -309,6 +311,8 @@ verdicts(struct cmd_ctx *c, const struct analyze *a, int fig, int *reached)
 			goto fail;
 		json_t *v = json_object();
 		json_object_set_new(v, "target", cmd_vec(a->target[t], 3));
+		json_object_set_new(v, "restarts",
+				    json_integer(a->req.mode == REACH_ARM ? ENVELOPE_ARM_RESTARTS : 0));
 		json_object_set_new(v, "reached", json_boolean(res.reached));
 		json_object_set_new(v, "shortfall", json_real(res.reached ? 0.0 : res.distance));
 		json_object_set_new(v, "distance", json_real(res.distance));

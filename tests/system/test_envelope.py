@@ -34,6 +34,8 @@ from test_assess_tint import decode_png
 trimesh = pytest.importorskip("trimesh")
 
 RES = 0.08          # m: the grid of the envelopes computed here
+ARM_RESTARTS = 4    # envelope.h's ENVELOPE_ARM_RESTARTS: the arm's solves try again from
+                    # random postures when stuck short (can reach ... restarts=N does the same)
 TIMEOUT = 600       # s: a reply may wait for an envelope computed on a busy machine
 TOL_POS = 1e-3      # m: reach.h's REACH_TOL_POS, the residual allowed
 TOL_LIMIT = 1e-9    # rad: a joint value on its limit
@@ -172,14 +174,15 @@ def test_vertices_are_reached_and_points_outside_are_not(daemon):
         short, outside_reached, checked_out = [], [], 0
         for i in idx:
             v, n = V[i], N[i]
-            r = c.request(f"can reach probe hand=right {xyz(v)} mode=arm")
+            r = c.request(f"can reach probe hand=right {xyz(v)} mode=arm restarts={ARM_RESTARTS}")
             if not (r["reached"] and r["distance"] <= TOL_POS and within_limits(r["posture"], lim)):
                 short.append((list(v), r["distance"]))
             out = v + 2 * RES * n
             if winding(out, V, F)[0] > 0.5:
                 continue  # a fold of the surface: two steps out is inside it again
             checked_out += 1
-            if c.request(f"can reach probe hand=right {xyz(out)} mode=arm")["reached"]:
+            if c.request(f"can reach probe hand=right {xyz(out)} mode=arm "
+                         f"restarts={ARM_RESTARTS}")["reached"]:
                 outside_reached.append(list(out))
         assert not short, short
         assert checked_out >= SAMPLES * 3 // 4
@@ -219,7 +222,9 @@ def test_target_verdicts_are_can_reachs(daemon):
             assert "volume" not in r  # targets alone: no envelope
             assert len(r["targets"]) == len(pts)
             for p, v in zip(pts, r["targets"]):
-                ref = c.request(f"can reach probe hand=right {xyz(p)} mode={mode}")
+                rs = ARM_RESTARTS if mode == "arm" else 0
+                ref = c.request(f"can reach probe hand=right {xyz(p)} mode={mode} restarts={rs}")
+                assert v["restarts"] == rs
                 assert v["reached"] == ref["reached"], (mode, p)
                 assert v["distance"] == pytest.approx(ref["distance"], abs=1e-9), (mode, p)
                 assert v["shortfall"] == (0 if ref["reached"] else pytest.approx(ref["distance"]))
@@ -244,7 +249,8 @@ def test_which_manikins_reach_the_control(daemon):
         expect = [[] for _ in pts]
         for f in r["figures"]:
             for k, (p, v) in enumerate(zip(pts, f["targets"])):
-                ref = c.request(f"can reach {f['figure']} hand=right {xyz(p)} mode=arm")
+                ref = c.request(f"can reach {f['figure']} hand=right {xyz(p)} mode=arm "
+                                f"restarts={ARM_RESTARTS}")
                 assert v["reached"] == ref["reached"]
                 if ref["reached"]:
                     expect[k].append(f["figure"])
@@ -365,7 +371,8 @@ def test_the_comfort_zone(daemon):
         outside = pts[winding(pts, reach.vertices, reach.faces) < 0.5]
         assert len(outside) <= 0.25 * len(pts)
         for p in outside[:8]:
-            assert c.request(f"can reach probe hand=right {xyz(p)} mode=arm")["reached"], p
+            assert c.request(f"can reach probe hand=right {xyz(p)} mode=arm "
+                             f"restarts={ARM_RESTARTS}")["reached"], p
         r0 = z["ranges"][0]
         key = f"{r0['joint']}.{r0['dof']}"
         lo, hi = r0["lo"], (r0["lo"] + r0["hi"]) / 2  # a narrower range: a smaller zone
