@@ -63,6 +63,92 @@ check(const struct mesh_export *m, int n, char *err, size_t errlen)
 	return 0;
 }
 
+/*
+ * A surface as written: vertices at the same position welded into one (the
+ * first one's normal kept) and the triangles that then repeat a corner left
+ * out. Those have no area, add nothing to the volume, and would leave edges
+ * shared by more than two facets once a reader welds by position (every STL
+ * reader does): a marching-cubes surface passing exactly through a grid point
+ * makes them.
+ */
+struct welded {
+	int nvert, ntri;
+	float *vert, *normal;
+	int *tri;
+};
+
+static const float *sort_vert; /* qsort has no context argument: the vertices being sorted */
+
+static int
+by_position(const void *a, const void *b)
+{
+	const float *p = sort_vert + 3 * *(const int *)a, *q = sort_vert + 3 * *(const int *)b;
+	for (int k = 0; k < 3; k++)
+		if (p[k] != q[k])
+			return p[k] < q[k] ? -1 : 1;
+	return *(const int *)a - *(const int *)b; /* the first of equals first */
+}
+
+static void
+welded_free(struct welded *w)
+{
+	free(w->vert);
+	free(w->normal);
+	free(w->tri);
+}
+
+/* 0, or -1 when out of memory */
+static int
+weld(const struct mesh_export *m, struct welded *dest)
+{
+	memset(dest, 0, sizeof *dest);
+	int *order = malloc(sizeof *order * (size_t)m->nvert);
+	int *map = malloc(sizeof *map * (size_t)m->nvert);
+	dest->vert = malloc(sizeof(float) * 3 * (size_t)m->nvert);
+	dest->normal = malloc(sizeof(float) * 3 * (size_t)m->nvert);
+	dest->tri = malloc(sizeof(int) * 3 * (size_t)m->ntri);
+	if (!order || !map || !dest->vert || !dest->normal || !dest->tri) {
+		free(order);
+		free(map);
+		welded_free(dest);
+		return -1;
+	}
+	for (int i = 0; i < m->nvert; i++)
+		order[i] = i;
+	sort_vert = m->vert;
+	qsort(order, (size_t)m->nvert, sizeof *order, by_position);
+	/* each vertex's representative: the first (lowest index) at its position; order reused */
+	for (int k = 0; k < m->nvert; k++) {
+		int i = order[k];
+		int same = k && !memcmp(m->vert + 3 * i, m->vert + 3 * order[k - 1], 3 * sizeof(float));
+		map[i] = same ? map[order[k - 1]] : i;
+	}
+	/* numbered in the input's order, so a surface without duplicates stays as it was */
+	for (int i = 0; i < m->nvert; i++) {
+		if (map[i] != i) {
+			map[i] = order[map[i]];
+			continue;
+		}
+		order[i] = dest->nvert; /* order[i] now: vertex i's new number */
+		map[i] = dest->nvert;
+		memcpy(dest->vert + 3 * dest->nvert, m->vert + 3 * i, 3 * sizeof(float));
+		memcpy(dest->normal + 3 * dest->nvert, m->normal + 3 * i, 3 * sizeof(float));
+		dest->nvert++;
+	}
+	for (int t = 0; t < m->ntri; t++) {
+		int a = map[m->tri[3 * t]], b = map[m->tri[3 * t + 1]], c = map[m->tri[3 * t + 2]];
+		if (a == b || b == c || c == a)
+			continue;
+		int *d = dest->tri + 3 * dest->ntri++;
+		d[0] = a;
+		d[1] = b;
+		d[2] = c;
+	}
+	free(order);
+	free(map);
+	return 0;
+}
+
 /* binary STL: an 80-byte header, the count, then 50 bytes a facet (its normal, 3 corners) */
 static int
 write_stl(const struct mesh_export *m, FILE *f)
@@ -287,14 +373,37 @@ mesh_export_write(const struct mesh_export *m, int n, const char *path, char *er
 	}
 	if (check(m, stl ? 1 : n, err, errlen) < 0)
 		return -1;
-	struct export_file out;
-	FILE *f = export_file_open(&out, path, err, errlen);
-	if (!f)
-		return -1;
-	if ((stl ? write_stl(m, f) : write_gltf(m, n, glb, f)) < 0) {
-		export_file_abandon(&out);
-		snprintf(err, errlen, "%s: could not write (out of memory or disk)", path);
-		return -1;
+	if (stl)
+		n = 1;
+	struct welded *w = calloc((size_t)n, sizeof *w);
+	struct mesh_export *clean = calloc((size_t)n, sizeof *clean);
+	int made = 0;
+	for (; w && clean && made < n; made++) {
+		if (weld(&m[made], &w[made]) < 0)
+			break;
+		clean[made] = m[made];
+		clean[made].nvert = w[made].nvert;
+		clean[made].ntri = w[made].ntri;
+		clean[made].vert = w[made].vert;
+		clean[made].normal = w[made].normal;
+		clean[made].tri = w[made].tri;
 	}
-	return export_file_commit(&out, err, errlen);
+	int rc = -1;
+	if (made < n)
+		snprintf(err, errlen, "out of memory");
+	else if (check(clean, n, err, errlen) == 0) {
+		struct export_file out;
+		FILE *f = export_file_open(&out, path, err, errlen);
+		if (f && (stl ? write_stl(clean, f) : write_gltf(clean, n, glb, f)) < 0) {
+			export_file_abandon(&out);
+			snprintf(err, errlen, "%s: could not write (out of memory or disk)", path);
+		} else if (f) {
+			rc = export_file_commit(&out, err, errlen);
+		}
+	}
+	for (int k = 0; k < made; k++)
+		welded_free(&w[k]);
+	free(w);
+	free(clean);
+	return rc;
 }

@@ -4,6 +4,10 @@
  * slicing tool opens, and glTF 2.0, binary (.glb) or text with its buffer
  * inside as base64 (.gltf).
  *
+ * Vertices at the same position are welded into one and the triangles that
+ * then repeat a corner (no area) left out, so the file is the closed surface
+ * a reader welding by position (every STL reader) sees as closed.
+ *
  * STL holds one surface and no colour: the first mesh given alone. glTF
  * holds each mesh as a node of that name with a material of its colour
  * (alpha below 1: blended), vertex normals, and 32-bit indices. Units

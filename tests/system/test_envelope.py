@@ -36,7 +36,8 @@ trimesh = pytest.importorskip("trimesh")
 RES = 0.08          # m: the grid of the envelopes computed here
 ARM_RESTARTS = 4    # envelope.h's ENVELOPE_ARM_RESTARTS: the arm's solves try again from
                     # random postures when stuck short (can reach ... restarts=N does the same)
-TIMEOUT = 600       # s: a reply may wait for an envelope computed on a busy machine
+BODY_RES = 0.25     # m: envelope.h's ENVELOPE_RES_MAX, for mode=body
+TIMEOUT = 900       # s: a reply may wait for an envelope computed on a busy machine
 TOL_POS = 1e-3      # m: reach.h's REACH_TOL_POS, the residual allowed
 TOL_LIMIT = 1e-9    # rad: a joint value on its limit
 SAMPLES = 24        # vertices checked by can reach
@@ -192,8 +193,9 @@ def test_vertices_are_reached_and_points_outside_are_not(daemon):
 def test_the_body_envelope_contains_the_arm_envelope(daemon):
     with daemon.client(timeout=TIMEOUT) as c:
         c.request("load human as probe")
-        arm = c.request(f"analyze reach probe hand=right mode=arm resolution={RES}")
-        body = c.request(f"analyze reach probe hand=right mode=body resolution={RES}")
+        # the body's solves are slow (minutes at 20 cm on two busy cores): the coarsest grid
+        arm = c.request(f"analyze reach probe hand=right mode=arm resolution={BODY_RES}")
+        body = c.request(f"analyze reach probe hand=right mode=body resolution={BODY_RES}")
         assert body["name"] == "probe.right.body"
         assert body["volume"] > arm["volume"]
         a = export(c, daemon, "probe.right.arm", "arm.stl")
