@@ -2,7 +2,8 @@
  * test_mesh_export.c - closed meshes written as STL and glTF
  * (export/mesh_export.h), read back here byte by byte against the formats'
  * layouts: binary STL's 84-byte head and 50-byte facets, GLB's chunks, the
- * .gltf's base64 buffer. (The system tests read them with trimesh too.)
+ * .gltf's base64 buffer; a triangle soup with a zero-area facet written
+ * welded. (The system tests read them with trimesh too.)
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -207,6 +208,60 @@ test_gltf_text(void **unused)
 	icosphere_free(&s);
 }
 
+/*
+ * A triangle soup (each facet its own three vertices) with a zero-area facet
+ * (two corners at one position): written welded, its facets without the
+ * degenerate one, the sphere it was.
+ */
+static void
+test_welded(void **unused)
+{
+	(void)unused;
+	struct icosphere s;
+	const double c[3] = { 0, 1, 0 };
+	icosphere_make(&s, 2, 0.5, c);
+	int nt = s.ntri + 1, nv = 3 * nt;
+	float *v = malloc(sizeof *v * 3 * (size_t)nv), *n = malloc(sizeof *n * 3 * (size_t)nv);
+	int *tri = malloc(sizeof *tri * 3 * (size_t)nt);
+	for (int t = 0; t < s.ntri; t++)
+		for (int j = 0; j < 3; j++) {
+			memcpy(v + 3 * (3 * t + j), s.vert + 3 * s.tri[3 * t + j], 3 * sizeof *v);
+			memcpy(n + 3 * (3 * t + j), s.normal + 3 * s.tri[3 * t + j], 3 * sizeof *n);
+			tri[3 * t + j] = 3 * t + j;
+		}
+	/* the extra facet: corners 0 and 1 of facet 0 with corner 0 again, at its own vertices */
+	for (int j = 0; j < 3; j++) {
+		memcpy(v + 3 * (3 * s.ntri + j), s.vert + 3 * s.tri[j == 1 ? 1 : 0], 3 * sizeof *v);
+		memcpy(n + 3 * (3 * s.ntri + j), s.normal + 3 * s.tri[0], 3 * sizeof *n);
+		tri[3 * s.ntri + j] = 3 * s.ntri + j;
+	}
+	struct mesh_export m = { .name = "soup", .nvert = nv, .ntri = nt, .vert = v, .normal = n,
+				 .tri = tri, .rgba = { 1, 1, 1, 1 } };
+	char path[256], err[256];
+	snprintf(path, sizeof path, "%s/soup.glb", dir);
+	assert_int_equal(mesh_export_write(&m, 1, path, err, sizeof err), 0);
+	size_t len;
+	unsigned char *b = slurp(path, &len);
+	json_t *doc = json_loadb((const char *)b + 20, u32(b + 12), 0, NULL);
+	json_t *acc = json_object_get(doc, "accessors");
+	assert_int_equal(json_integer_value(json_object_get(json_array_get(acc, 0), "count")), s.nvert);
+	assert_int_equal(json_integer_value(json_object_get(json_array_get(acc, 2), "count")),
+			 3 * s.ntri);
+	json_decref(doc);
+	free(b);
+	unlink(path);
+	snprintf(path, sizeof path, "%s/soup.stl", dir);
+	assert_int_equal(mesh_export_write(&m, 1, path, err, sizeof err), 0);
+	b = slurp(path, &len);
+	assert_int_equal(u32(b + 80), (uint32_t)s.ntri);
+	free(b);
+	unlink(path);
+	free(v);
+	free(n);
+	free(tri);
+	icosphere_free(&s);
+}
+
 static void
 test_refused(void **unused)
 {
@@ -238,6 +293,7 @@ main(void)
 		cmocka_unit_test(test_stl),
 		cmocka_unit_test(test_glb),
 		cmocka_unit_test(test_gltf_text),
+		cmocka_unit_test(test_welded),
 		cmocka_unit_test(test_refused),
 	};
 	int rc = cmocka_run_group_tests(tests, NULL, NULL);
