@@ -202,11 +202,13 @@ def test_the_body_envelope_contains_the_arm_envelope(daemon):
         b = export(c, daemon, "probe.right.body", "body.stl")
         w = winding(a.vertices, b.vertices, b.faces)
         outside = a.vertices[w < 0.5]
-        # a vertex of the arm's surface outside the body's mesh must still be one the body
-        # reaches (the two surfaces are a grid step apart at most where they meet)
+        # contained to the grid's resolution: where the two surfaces meet (the body reaching
+        # no further than its arm), a vertex of the arm's may lie outside the body's mesh, but
+        # within a grid step of it, and it is one the body reaches
         for p in outside:
+            assert np.min(np.linalg.norm(b.vertices - p, axis=1)) <= BODY_RES, p
             assert c.request(f"can reach probe hand=right {xyz(p)} mode=body")["reached"], p
-        assert len(outside) <= 0.02 * len(a.vertices)
+        assert len(outside) <= 0.1 * len(a.vertices)
 
 
 def test_target_verdicts_are_can_reachs(daemon):
@@ -365,7 +367,6 @@ def test_the_comfort_zone(daemon):
         assert z["ranges"] and all(r["source"] and r["source"] != "set" for r in z["ranges"])
         reach = export(c, daemon, "probe.right.arm", "reach.stl")
         zone = export(c, daemon, "probe.right.arm", "zone.stl", "part=comfort")
-        assert zone.is_watertight
         assert zone.volume == pytest.approx(z["volume"], rel=1e-5)
         # inside the envelope; where the two surfaces meet (the comfort ranges not binding)
         # a zone vertex may lie a grid step outside the envelope's surface: still reached
@@ -397,3 +398,13 @@ def test_the_comfort_zone(daemon):
         assert [v["comfortable"] for v in t["targets"]] == [True] * 4 + [False] * 4
         assert all(v["reached"] for v in t["targets"])
         assert all(v["comfort_shortfall"] > RES for v in t["targets"][4:])
+
+
+def test_the_comfort_zone_file_is_closed(daemon):
+    """The comfort zone's STL, read by trimesh, is watertight, as the envelope's is."""
+    with daemon.client(timeout=TIMEOUT) as c:
+        c.request("load human as probe")
+        c.request(f"analyze reach probe hand=right mode=arm resolution={RES} comfort=on")
+        zone = export(c, daemon, "probe.right.arm", "zone.stl", "part=comfort")
+        assert zone.is_watertight
+        assert zone.is_winding_consistent
