@@ -61,8 +61,8 @@ main(int argc, char **argv)
 			rc = run(m, s, mode, atof(argv[i + 1])) < 0;
 		}
 	} else {
-		rc = run(m, s, REACH_ARM, 0.02) < 0 || run(m, s, REACH_TORSO, 0.05) < 0 ||
-		     run(m, s, REACH_BODY, 0.1) < 0;
+		rc = run(m, s, REACH_ARM, 0.02) < 0 || run(m, s, REACH_TORSO, 0.12) < 0 ||
+		     run(m, s, REACH_BODY, 0.25) < 0;
 	}
 	state_free(s);
 	model_free(m);
