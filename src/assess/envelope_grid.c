@@ -17,8 +17,8 @@
  * surface, is taken as inside without solving its points (a pocket of unreachable
  * points smaller than this, away from the surface, is not looked for) */
 #define TRUST_CELL 0.16
-/* the grid's size, points (about 9 bytes each) */
-#define GRID_POINTS_MAX (24L << 20)
+/* the grid's size, points (13 bytes each: at most about 200 MB) */
+#define GRID_POINTS_MAX (16L << 20)
 
 enum { ST_NONE, ST_SOLVED, ST_BOUND, ST_ASSUMED, ST_QUEUED };
 
