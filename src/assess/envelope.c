@@ -313,6 +313,7 @@ envelope_compute(const struct model *m, const struct state *s, const struct beha
 	struct env_stats st = { { 0, 0, 0 }, 0 };
 	int r = human_surface(m, s, p, pm, n, req, &dest->reach, &st, err, errlen);
 	long solves = st.solves;
+	memcpy(dest->grid, st.grid, sizeof dest->grid); /* the reach's grid */
 	if (!r && cm) {
 		r = human_surface(cm, s, p, pm, n, req, &dest->comfort, &st, err, errlen);
 		solves += st.solves;
@@ -323,7 +324,6 @@ envelope_compute(const struct model *m, const struct state *s, const struct beha
 		return -1;
 	}
 	dest->req = *req;
-	memcpy(dest->grid, st.grid, sizeof dest->grid);
 	dest->solves = solves;
 	dest->seconds = now_s() - t0;
 	return 0;

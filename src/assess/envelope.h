@@ -8,10 +8,12 @@
  * The surface is marching cubes over a reachability field on a regular grid
  * of the request's resolution: at a grid point, the distance from the point
  * to where reach_solve's palm ends up (0 inside: reached). Outside, that is
- * the distance to the reachable set, so the surface is placed at a small
- * iso-distance from it and every vertex is reachable within the solver's
- * tolerance. The mesh is closed and consistently oriented (outward normals),
- * its volume by the divergence theorem.
+ * the distance to the reachable set, which prunes the points to solve
+ * (assess/envelope_grid.h). Each vertex is placed on its grid edge by the
+ * plane tangent to the set there, then sent to the solver: unless reached,
+ * it moves to where the palm ended, so every vertex is a reached point. The
+ * mesh (assess/mcubes.h) is closed and consistently oriented (outward
+ * normals), its volume by the divergence theorem.
  *
  * The comfort zone is the same surface with the moved joints held within
  * their comfort ranges (envelope_comfort_default says which and cites each).

@@ -17,8 +17,8 @@
  * surface, is taken as inside without solving its points (a pocket of unreachable
  * points smaller than this, away from the surface, is not looked for) */
 #define TRUST_CELL 0.16
-/* the grid's size, points (about 9 bytes each) */
-#define GRID_POINTS_MAX (24L << 20)
+/* the grid's size, points (13 bytes each: at most about 200 MB) */
+#define GRID_POINTS_MAX (16L << 20)
 
 enum { ST_NONE, ST_SOLVED, ST_BOUND, ST_ASSUMED, ST_QUEUED };
 
@@ -410,7 +410,8 @@ trace_surface(struct field *f)
 
 /* ---- the surface's vertices --------------------------------------------------- */
 
-/* where the plane tangent to the reachable set at b's nearest reached point crosses a-b */
+/* where the plane tangent to the reachable set at b's nearest reached point, moved in by a
+ * margin, crosses a-b */
 static void
 vertex_guess(const struct field *f, long a, long b, double dest[3])
 {
@@ -424,9 +425,14 @@ vertex_guess(const struct field *f, long a, long b, double dest[3])
 		double ab[3] = { pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
 		double len = sqrt(ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2]);
 		double den = d > 0 ? (ab[0] * nv[0] + ab[1] * nv[1] + ab[2] * nv[2]) / d : 0;
+		/* the plane a millimetre (at most a twentieth of a step) inside: a vertex on
+		 * a curved surface's tangent plane would mostly be just out of reach, and
+		 * its solve would fail after every restart */
+		double margin = fmin(1e-3, 0.05 * f->step);
 		if (den > 1e-6 * len)
-			t = ((c[0] - pa[0]) * nv[0] + (c[1] - pa[1]) * nv[1] + (c[2] - pa[2]) * nv[2]) /
-			    d / den;
+			t = (((c[0] - pa[0]) * nv[0] + (c[1] - pa[1]) * nv[1] + (c[2] - pa[2]) * nv[2]) / d -
+			     margin) /
+			    den;
 		else
 			t = 1 - d / len;
 	}
