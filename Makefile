@@ -309,7 +309,8 @@ BENCH_STANDALONE := $(BUILD)/rel/bench/ik_body $(BUILD)/rel/bench/behave_bench $
 	$(BUILD)/rel/bench/assess_live_bench $(BUILD)/rel/bench/tint_bench $(BUILD)/rel/bench/lowback_bench \
 	$(BUILD)/rel/bench/loads_bench $(BUILD)/rel/bench/loads_live_bench $(BUILD)/rel/bench/reach_bench \
 	$(BUILD)/rel/bench/visibility_bench \
-	$(BUILD)/rel/bench/fit_bench
+	$(BUILD)/rel/bench/fit_bench \
+	$(BUILD)/rel/bench/envelope_bench
 
 bench: deps $(rel_BENCH) $(rel_TOOLS) $(rel_GUEST) $(PEER_BENCH)
 	@set -e; for b in $(BENCH_STANDALONE); do echo "== $$b"; $$b; done

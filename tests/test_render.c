@@ -28,6 +28,7 @@
 #include "draw/view.h"
 
 #include "alloc_count.h"
+#include "icosphere.h"
 
 #define W 320
 #define H 240
@@ -380,6 +381,90 @@ test_frame_no_alloc(void **unused)
 	rig_free(&g);
 }
 
+/* ---- a mesh made at run time ---------------------------------------------- */
+
+/* pixels of the two pictures (W x H, packed) that differ by more than 8 in any channel */
+static int
+differing(const uint8_t *a, const uint8_t *b)
+{
+	int n = 0;
+	for (int i = 0; i < W * H; i++)
+		for (int k = 0; k < 3; k++)
+			if (abs(a[4 * i + k] - b[4 * i + k]) > 8) {
+				n++;
+				break;
+			}
+	return n;
+}
+
+static uint8_t *
+shoot_with(struct rig *g, int mesh, const float rgba[4])
+{
+	static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+	struct frame f;
+	demo_scene_draw(g->dl, &g->sc, &g->cam, W, H, g->base, 0);
+	if (mesh >= 0)
+		assert_true(view_add_instance(g->dl, mesh, identity, rgba, 0) >= 0);
+	assert_int_equal(render_frame(g->r, g->dl, 0, &f), 0);
+	uint8_t *px = malloc(4 * W * H);
+	for (int y = 0; y < H; y++)
+		memcpy(px + 4 * W * y, f.rgba + (size_t)f.stride * y, 4 * W);
+	return px;
+}
+
+/*
+ * render_set_mesh: a see-through sphere about the figure's chest changes the
+ * picture where it covers, and only there and translucently (the figure shows
+ * through: the pixels are neither the background's nor the sphere's flat
+ * colour); emptied, the picture is the one without it; replaced by a bigger
+ * one, more changes; bad meshes and ids refused.
+ */
+static void
+test_run_time_mesh(void **unused)
+{
+	(void)unused;
+	struct rig g;
+	rig_make(&g, "standing");
+	char err[256];
+	struct icosphere s, big;
+	const double c[3] = { 0, 1.2, 0 };
+	icosphere_make(&s, 3, 0.3, c);
+	icosphere_make(&big, 3, 0.6, c);
+	const float blue[4] = { 0.25f, 0.55f, 0.95f, 0.3f };
+	uint8_t *plain = shoot_with(&g, -1, blue);
+	int id = render_set_mesh(g.r, -1, s.vert, s.normal, s.nvert, s.tri, s.ntri, err, sizeof err);
+	assert_true(id >= VIEW_MESH_BUILTIN);
+	uint8_t *with = shoot_with(&g, id, blue);
+	int small_n = differing(plain, with);
+	assert_true(small_n > 500);
+	/* the centre pixel (the chest behind the sphere) is tinted, not replaced */
+	double px[2];
+	assert_int_equal(view_project(&g.cam, W, H, c, px), 1);
+	int i = 4 * (W * (int)px[1] + (int)px[0]);
+	assert_true(with[i + 2] > plain[i + 2]); /* bluer */
+	assert_true(abs(with[i] - plain[i]) < 200);
+	assert_int_equal(render_set_mesh(g.r, id, big.vert, big.normal, big.nvert, big.tri, big.ntri,
+					 err, sizeof err), id);
+	uint8_t *bigger = shoot_with(&g, id, blue);
+	assert_true(differing(plain, bigger) > small_n * 2);
+	assert_int_equal(render_set_mesh(g.r, id, NULL, NULL, 0, NULL, 0, err, sizeof err), id);
+	uint8_t *emptied = shoot_with(&g, id, blue);
+	assert_int_equal(differing(plain, emptied), 0);
+	/* refused: an index past the vertices, a built-in mesh's id */
+	s.tri[7] = s.nvert;
+	assert_int_equal(render_set_mesh(g.r, id, s.vert, s.normal, s.nvert, s.tri, s.ntri, err,
+					 sizeof err), -1);
+	assert_int_equal(render_set_mesh(g.r, VIEW_MESH_SPHERE, big.vert, big.normal, big.nvert,
+					 big.tri, big.ntri, err, sizeof err), -1);
+	free(plain);
+	free(with);
+	free(bigger);
+	free(emptied);
+	icosphere_free(&s);
+	icosphere_free(&big);
+	rig_free(&g);
+}
+
 int
 main(void)
 {
@@ -390,6 +475,7 @@ main(void)
 		cmocka_unit_test(test_golden_seated),
 		cmocka_unit_test(test_golden_icons),
 		cmocka_unit_test(test_frame_no_alloc),
+		cmocka_unit_test(test_run_time_mesh),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -8,10 +8,12 @@
  * The surface is marching cubes over a reachability field on a regular grid
  * of the request's resolution: at a grid point, the distance from the point
  * to where reach_solve's palm ends up (0 inside: reached). Outside, that is
- * the distance to the reachable set, so the surface is placed at a small
- * iso-distance from it and every vertex is reachable within the solver's
- * tolerance. The mesh is closed and consistently oriented (outward normals),
- * its volume by the divergence theorem.
+ * the distance to the reachable set, which prunes the points to solve
+ * (assess/envelope_grid.h). Each vertex is placed on its grid edge by the
+ * plane tangent to the set there, then sent to the solver: unless reached,
+ * it moves to where the palm ended, so every vertex is a reached point. The
+ * mesh (assess/mcubes.h) is closed and consistently oriented (outward
+ * normals), its volume by the divergence theorem.
  *
  * The comfort zone is the same surface with the moved joints held within
  * their comfort ranges (envelope_comfort_default says which and cites each).
@@ -30,28 +32,14 @@
 #include "pose/behave.h"
 #include "pose/point_mass.h"
 #include "pose/reach.h"
+#include "assess/envelope_comfort.h"
 
 #define ENVELOPE_RES_DEFAULT 0.02 /* m: the grid's step */
 #define ENVELOPE_RES_MIN 0.005
 #define ENVELOPE_RES_MAX 0.25
-
-/* a joint dof held within [lo, hi] degrees for the comfort zone */
-#define ENVELOPE_COMFORT_MAX 24
-struct envelope_comfort_range {
-	char joint[24]; /* the human's limb joint name without its side ("shoulder", "elbow"...),
-			   or a spine joint's name */
-	int dof;        /* the joint's dof index (0-based) */
-	double lo, hi;  /* degrees */
-};
-struct envelope_comfort {
-	int n;
-	struct envelope_comfort_range r[ENVELOPE_COMFORT_MAX];
-};
-
-/* the default comfort ranges (each cited in envelope_comfort.c) */
-void envelope_comfort_default(struct envelope_comfort *dest);
-/* the source of default range i, or NULL */
-const char *envelope_comfort_source(int i);
+/* the arm's solves: "can reach" with this many random restarts when stuck short of a
+ * point (pose/reach.h), so that a local minimum does not cut a piece off the envelope */
+#define ENVELOPE_ARM_RESTARTS 4
 
 struct envelope_request {
 	int side;             /* BEHAVE_LEFT or BEHAVE_RIGHT */
@@ -93,6 +81,19 @@ int envelope_compute(const struct model *m, const struct state *s, const struct 
 		     const struct point_mass *pm, int n, const struct envelope_request *req,
 		     struct envelope *dest, char *err, size_t errlen);
 void envelope_free(struct envelope *e);
+
+/*
+ * The envelope of any figure's chain, for figures that are not humans and
+ * for checks against analytic reachable sets: site `effector` sent toward
+ * each point by the joints from it up to start_joint (-1: to the root),
+ * within their limits, from the posture s (current frames). Only req's
+ * resolution and threads are used. Returns 0 with *dest filled (free its
+ * arrays with free(), or wrap it in a struct envelope for envelope_free) and
+ * the solves made in *solves (may be NULL), or -1 with a message in err.
+ */
+int envelope_compute_chain(const struct model *m, const struct state *s, int effector,
+			   int start_joint, const struct envelope_request *req,
+			   struct envelope_mesh *dest, long *solves, char *err, size_t errlen);
 
 /* 1 when p lies inside the closed mesh (ray parity), else 0 */
 int envelope_mesh_contains(const struct envelope_mesh *mesh, const double p[3]);

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "daemon/cmd_ctx.h"
+#include "daemon/envelopes.h"
 #include "daemon/session.h"
 
 typedef int (*cmd_handler)(struct cmd_ctx *);
@@ -262,6 +263,8 @@ cmd_run(struct daemon *d, int client, const char *line, size_t len, struct cmd_o
 	}
 	c.result = json_object();
 	int rc = e->fn(&c);
+	if (d->envelopes) /* a figure gone (unload, undo, a session): its envelopes too */
+		envelopes_prune(d->envelopes, &d->env);
 	if (rc == 0 && checkpoint && !c.unchanged) {
 		daemon_checkpoints_push(&d->undo, before, before_len);
 		daemon_checkpoints_clear(&d->redo);

@@ -3,6 +3,7 @@
  * copy of the figure's state, so nothing the person sees changes; and
  * reach, the same solve with the posture taken.
  */
+#include <stdlib.h>
 #include <string.h>
 
 #include "daemon/cmd_ctx.h"
@@ -11,6 +12,8 @@
 #include "pose/reach.h"
 
 static const char *const mode_names[] = { "arm", "torso", "body" };
+
+#define REACH_RESTARTS_MAX 64 /* reach_solve's own bound */
 
 /* the request's words (nearest= only when may_take); 0, or -1 with the error set */
 static int
@@ -21,7 +24,7 @@ read_request(struct cmd_ctx *c, const char *usage, int may_take, struct reach_re
 	for (int i = 1; i < c->argc; i++) {
 		const char *w = c->argv[i];
 		if (words_is_key(w, "hand") || words_is_key(w, "rot") || words_is_key(w, "yaw") ||
-		    words_is_key(w, "mode") || words_is_key(w, "balance") ||
+		    words_is_key(w, "mode") || words_is_key(w, "balance") || words_is_key(w, "restarts") ||
 		    (may_take && words_is_key(w, "nearest")))
 			continue;
 		if (have_target || words_list(w, UNIT_LENGTH, 3, q->target) < 0)
@@ -51,6 +54,14 @@ read_request(struct cmd_ctx *c, const char *usage, int may_take, struct reach_re
 		return cmd_fail(c, "bad-argument", "balance= is for mode=body (the arm and torso "
 				"move nothing the feet carry)");
 	q->balance = !bal || !strcmp(bal, "on");
+	const char *rs = cmd_key(c, "restarts");
+	if (rs) { /* as the envelopes solve (assess/envelope.h): stuck short, from other postures */
+		char *end;
+		long n = strtol(rs, &end, 10);
+		if (!rs[0] || *end || n < 0 || n > REACH_RESTARTS_MAX)
+			return cmd_fail(c, "bad-argument", "restarts=N from 0 to %d", REACH_RESTARTS_MAX);
+		q->restarts = (int)n;
+	}
 	return cmd_rotation(c, q->rot, &q->oriented);
 }
 

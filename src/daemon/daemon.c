@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "daemon/envelopes.h"
 #include "daemon/family.h"
 #include "daemon/session.h"
 
@@ -83,6 +84,8 @@ daemon_replace_env(struct daemon *d, const char *text, size_t len, char *err, si
 	env_clear(&d->env);
 	d->env = *fresh;
 	free(fresh);
+	if (d->envelopes) /* those of the figures the new environment lacks */
+		envelopes_prune(d->envelopes, &d->env);
 	daemon_set_assess_config(d, &cfg);
 	return 0;
 }

@@ -28,6 +28,7 @@ struct hemi_map;          /* draw/hemi.h */
 struct assess_live;       /* daemon/assess_live.h */
 struct loads_live;        /* daemon/loads_live.h */
 struct fit_live;          /* daemon/fit_live.h */
+struct envelopes;         /* daemon/envelopes.h */
 
 #define DAEMON_UNDO_MAX 64 /* checkpoints kept for undo, and for redo */
 #define VIEW_MAX_W 1920    /* the largest picture a view may ask for */
@@ -245,6 +246,12 @@ struct daemon {
 	struct loads_live *loads_live;
 	/* the figures' collision models and their pairs' last answers (fit_live.h) */
 	struct fit_live *fit_live;
+	/*
+	 * The reach envelopes kept (analyze reach; envelopes.h): derived
+	 * results, not in sessions, undo or the journal; those of a figure that
+	 * goes go with it. NULL until the first is made.
+	 */
+	struct envelopes *envelopes;
 	/* commands that changed something, counted: what a cached analysis was made under */
 	uint64_t mutations;
 };

@@ -20,6 +20,7 @@
 #include "daemon/fit_live.h"
 #include "daemon/loads_live.h"
 #include "daemon/cmd.h"
+#include "daemon/envelopes.h"
 #include "daemon/kiosk_route.h"
 #include "daemon/notify.h"
 #include "devices/can_dev.h"
@@ -834,6 +835,9 @@ loop_teardown(struct loop *L)
 	assess_live_free(&L->d);
 	loads_live_free(&L->d);
 	fit_live_free(&L->d);
+	if (L->d.envelopes)
+		envelopes_clear(L->d.envelopes);
+	free(L->d.envelopes);
 	daemon_text_clear(&L->d.file_read); /* the last command's file, if it read one */
 	daemon_text_clear(&L->d.file_given);
 	kiosk_free(L->modes.kiosk);

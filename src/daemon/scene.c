@@ -13,6 +13,7 @@
 #include "daemon/loads_live.h"
 #include "daemon/family.h"
 #include "daemon/tint.h"
+#include "draw/pack.h"
 #include "draw/sink.h"
 #include "draw/tiles.h"
 #include "pose/eyeview.h"
@@ -365,6 +366,70 @@ add_sight(struct drawlist *dl, const struct daemon *d, const struct env_view *vw
 	}
 }
 
+static const struct envelope_mesh no_mesh; /* an emptied slot's */
+
+/* envelope mesh m into the renderer under *id (an id plus 1; 0: a new one); 0, or -1 */
+static int
+envelope_upload(struct scene *sc, int *id, const struct envelope_mesh *m, const char *name)
+{
+	char err[256];
+	/* the frame packs every instance into one buffer (pack.h): a surface taking more than
+	 * half of it would push the figures out, so it is not drawn */
+	if (m->nvert > PACK_MAX_VERT / 2 || 3L * m->ntri > PACK_MAX_IDX / 2) {
+		fprintf(stderr, "postured: envelope %s not drawn: %d vertices, %d triangles, more "
+			"than a frame holds (a coarser resolution draws)\n", name, m->nvert, m->ntri);
+		m = &no_mesh;
+	}
+	int got = render_set_mesh(sc->r, *id - 1, m->vert, m->normal, m->nvert, m->tri, m->ntri, err,
+				  sizeof err);
+	if (got < 0) {
+		fprintf(stderr, "postured: envelope %s not drawn: %s\n", name, err);
+		return -1;
+	}
+	*id = got + 1;
+	return 0;
+}
+
+/*
+ * The kept envelopes, see-through (alpha < 1: drawn after the opaque
+ * figures, their front faces alone), the comfort zone inside in its own
+ * colour. A surface is handed to the renderer once, when it is new; a
+ * slot emptied empties its meshes, which keep their ids for the next.
+ */
+static void
+add_envelopes(struct scene *sc, const struct daemon *d)
+{
+	static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+	const struct envelopes *s = d->envelopes;
+	for (int k = 0; k < ENVELOPES_MAX; k++) {
+		const struct envelope_entry *x = s && s->slot[k].used ? &s->slot[k] : NULL;
+		int *id = sc->envelope_mesh[k];
+		if (!x) {
+			if (sc->envelope_serial[k])
+				for (int i = 0; i < 2; i++)
+					if (id[i])
+						envelope_upload(sc, &id[i], &no_mesh, "");
+			sc->envelope_serial[k] = 0;
+			continue;
+		}
+		if (sc->envelope_serial[k] != x->serial) {
+			int bad = envelope_upload(sc, &id[0], &x->e.reach, x->name);
+			if (!bad && (x->e.comfort.ntri || id[1]))
+				bad = envelope_upload(sc, &id[1], &x->e.comfort, x->name);
+			sc->envelope_serial[k] = x->serial; /* a failure is said once, not each frame */
+			for (int i = 0; bad && i < 2; i++) /* nothing drawn of it, ids kept */
+				if (id[i])
+					envelope_upload(sc, &id[i], &no_mesh, x->name);
+		}
+		if (x->hidden || !id[0])
+			continue;
+		if (x->e.comfort.ntri && id[1])
+			view_add_instance(sc->dl, id[1] - 1, identity, ENVELOPE_COMFORT_RGBA, 0);
+		view_add_instance(sc->dl, id[0] - 1, identity, ENVELOPE_REACH_RGBA, 0);
+	}
+	sc->envelopes_seen = s ? s->serial : 0;
+}
+
 int
 scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest, char *err,
 	   size_t errlen)
@@ -409,6 +474,7 @@ scene_draw(struct scene *sc, struct daemon *d, int v, const struct frame **dest,
 		env_sync_solver(e, i);
 		view_add_goals(sc->dl, f->ik, f->model, f->state);
 	}
+	add_envelopes(sc, d);
 	if (vw->eyes[0]) /* the cones about the line of sight (eyeview.h) */
 		view_add_cone_marks(sc->dl, vw->cones_deg, vw->ncones);
 	add_sight(sc->dl, d, vw);
@@ -722,6 +788,8 @@ scene_publish(struct scene *sc, struct daemon *d, struct events *E, uint64_t now
 	struct env *e = &d->env;
 	int files = sc->frames_dir && now - sc->last_png_us >= SCENE_PERIOD_US;
 	int events = events_wanted(E, SUB_FRAME) && now - sc->last_event_us >= SCENE_PERIOD_US;
+	if (d->envelopes && d->envelopes->serial != sc->envelopes_seen)
+		sc->dirty = 1; /* an envelope made, hidden, shown or gone */
 	if (!sc->dirty || (!files && !events && !sc->fb) || sc->failed)
 		return 0;
 	int first = 1;

@@ -19,6 +19,7 @@
 
 #include "interact/menu.h"
 #include "daemon/daemon.h"
+#include "daemon/envelopes.h"
 #include "daemon/events.h"
 #include "daemon/tint.h"
 #include "draw/frame.h"
@@ -72,6 +73,16 @@ struct scene {
 	uint64_t (*wall_us)(void); /* the real clock (never a replay's); NULL: not measured */
 	int replaying;             /* a replay's pictures: the status line shows no timings */
 	struct tint tint;          /* a tinted view's colours (set view VIEW tint=...) */
+	/*
+	 * The kept reach envelopes' surfaces in the renderer (render_set_mesh):
+	 * for store slot k its reach and comfort meshes' ids plus 1 (0: none
+	 * made yet), and the envelope's serial they hold (0: nothing); uploaded
+	 * when an envelope is new, not every frame. envelopes_seen: the store's
+	 * serial last drawn (a change redraws).
+	 */
+	int envelope_mesh[ENVELOPES_MAX][2];
+	uint64_t envelope_serial[ENVELOPES_MAX];
+	uint64_t envelopes_seen;
 };
 
 void scene_init(struct scene *sc, const char *frames_dir);

@@ -58,6 +58,7 @@ struct render {
 
 	struct tess_mesh mesh[RENDER_MAX_MESH]; /* kept on the CPU for packing */
 	int lod[RENDER_MAX_MESH];               /* the coarse version of each mesh */
+	unsigned char dynamic[RENDER_MAX_MESH]; /* 1: made by render_set_mesh, replaceable */
 	int nmesh;
 	struct pack pack; /* the instances, packed every frame (pack.h) */
 	GLuint pvbo, pibo;
@@ -406,6 +407,59 @@ render_add_model(struct render *r, const struct model *m, char *err, size_t errl
 		keep(r, &t);
 	}
 	return base;
+}
+
+int
+render_set_mesh(struct render *r, int id, const float *vert, const float *normal, int nvert,
+		const int *tri, int ntri, char *err, size_t errlen)
+{
+	if (id >= 0 && (id >= r->nmesh || !r->dynamic[id])) {
+		snprintf(err, errlen, "mesh %d is not a run-time mesh", id);
+		return -1;
+	}
+	if (id < 0 && r->nmesh >= RENDER_MAX_MESH) {
+		snprintf(err, errlen, "mesh table full (%d meshes)", RENDER_MAX_MESH);
+		return -1;
+	}
+	if (nvert < 0 || ntri < 0 || (long long)ntri * 3 > 0x7fffffff) {
+		snprintf(err, errlen, "bad mesh size");
+		return -1;
+	}
+	for (long long i = 0; i < 3LL * ntri; i++)
+		if (tri[i] < 0 || tri[i] >= nvert) {
+			snprintf(err, errlen, "triangle %lld names vertex %d of %d", i / 3, tri[i], nvert);
+			return -1;
+		}
+	struct tess_mesh t = { 0 };
+	if (ntri) {
+		t.vn = malloc(sizeof *t.vn * 6 * (size_t)nvert);
+		t.idx = malloc(sizeof *t.idx * 3 * (size_t)ntri);
+		if (!t.vn || !t.idx) {
+			tess_free(&t);
+			snprintf(err, errlen, "out of memory");
+			return -1;
+		}
+		t.nvert = nvert;
+		t.nidx = 3 * ntri;
+		for (int i = 0; i < nvert; i++)
+			for (int k = 0; k < 3; k++) {
+				t.vn[6 * i + k] = vert[3 * i + k];
+				t.vn[6 * i + 3 + k] = normal[3 * i + k];
+				float v = vert[3 * i + k];
+				t.lo[k] = i == 0 || v < t.lo[k] ? v : t.lo[k];
+				t.hi[k] = i == 0 || v > t.hi[k] ? v : t.hi[k];
+			}
+		for (int i = 0; i < 3 * ntri; i++)
+			t.idx[i] = (unsigned)tri[i];
+	}
+	if (id < 0) {
+		id = keep(r, &t);
+		r->dynamic[id] = 1;
+		return id;
+	}
+	tess_free(&r->mesh[id]);
+	r->mesh[id] = t;
+	return id;
 }
 
 /* ---- drawing ------------------------------------------------------------------- */

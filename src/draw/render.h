@@ -67,6 +67,20 @@ void render_free(struct render *r);
 int render_add_model(struct render *r, const struct model *m, char *err, size_t errlen);
 
 /*
+ * A mesh made at run time (an analysis's surface): nvert vertices (vert and
+ * normal, 3 floats each, world or mesh units) and ntri triangles of vertex
+ * indices (tri, 3 each, counter-clockwise seen from outside: the side
+ * drawn). id -1 takes a new mesh id; an id this returned earlier is
+ * replaced (ntri 0 empties it: it draws nothing until set again, and keeps
+ * its id for reuse). The arrays are copied; call it when the mesh changes,
+ * not every frame. Returns the id, or -1 with a message in err (a vertex
+ * index out of range, the mesh table full, out of memory; an id it did not
+ * make), the mesh then unchanged.
+ */
+int render_set_mesh(struct render *r, int id, const float *vert, const float *normal, int nvert,
+		    const int *tri, int ntri, char *err, size_t errlen);
+
+/*
  * Draws dl (dl->width x dl->height, at most max_w x max_h) and reads it
  * back. dest gets the picture: its rgba points into the renderer's buffer
  * (rows top to bottom, stride 4 * max_w) and stays valid until the next

@@ -115,7 +115,8 @@ reach_solve(struct reach *r, const struct model *m, const struct state *s,
 {
 	if ((q->side != BEHAVE_LEFT && q->side != BEHAVE_RIGHT) ||
 	    (q->mode != REACH_ARM && q->mode != REACH_TORSO && q->mode != REACH_BODY) ||
-	    !finite3(q->target, 3) || (q->oriented && !finite3(q->rot, 9)))
+	    !finite3(q->target, 3) || (q->oriented && !finite3(q->rot, 9)) || q->restarts < 0 ||
+	    q->restarts > 64)
 		return -1;
 	memset(res, 0, sizeof *res);
 	state_copy(m, s, r->copy);
@@ -165,12 +166,18 @@ reach_solve(struct reach *r, const struct model *m, const struct state *s,
 	struct ik_options opt = ik_default_options();
 	opt.step_pos = opt.step_ori = 0; /* the whole way in one solve */
 	opt.budget_us = 0;               /* no clock: the verdict does not depend on the machine */
+	if (q->restarts > 0) {
+		opt.restarts = q->restarts;
+		opt.restart_after = 20; /* a start 20 iterations in that no longer halves its
+					   distance in 8 has found its basin */
+	}
 	res->ik = ik_solve(r->ik, m, r->copy, &opt, NULL);
 
 	const struct xform *palm = &r->copy->site_xf[r->b.s_palm[q->side]];
 	double dv[3] = { palm->p[0] - q->target[0], palm->p[1] - q->target[1],
 			 palm->p[2] - q->target[2] };
 	res->distance = sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+	memcpy(res->palm, palm->p, sizeof res->palm);
 	if (q->oriented) { /* the angle of palm^T goal from its trace */
 		double tr = 0;
 		for (int i = 0; i < 9; i++)

@@ -36,11 +36,15 @@ struct reach_request {
 	double rot[9];
 	enum reach_mode mode;
 	int balance;       /* REACH_BODY: 1 holds the centre of mass over the balance point */
+	int restarts;      /* 0 ("can reach"): one solve from the posture; n > 0: stuck short
+			      of the target, up to n more from random postures within the limits
+			      (the same ones for the same request), the best kept */
 };
 
 struct reach_result {
 	int reached;     /* distance <= REACH_TOL_POS (and angle <= REACH_TOL_ORI when oriented) */
 	double distance; /* m: palm to target after the solve */
+	double palm[3];  /* where the palm ended, world frame: a point the hand reaches */
 	double angle;    /* rad: palm axes to rot (0 when not oriented) */
 	double margin;   /* m: the centre of mass's stability margin in the reached posture */
 	int limiting[REACH_LIMITING_MAX]; /* joints with a moved dof resting on a limit */
