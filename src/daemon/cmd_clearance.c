@@ -9,7 +9,6 @@
 #include <string.h>
 
 #include "daemon/cmd_ctx.h"
-#include "daemon/family.h"
 #include "daemon/fit_live.h"
 #include "daemon/jbuf.h"
 #include "daemon/words.h"
@@ -155,17 +154,11 @@ cmd_analyze_clearance(struct cmd_ctx *c)
 	if (s && strcmp(s, "yes") && strcmp(s, "no"))
 		return cmd_fail(c, "bad-argument", "self=yes|no");
 	int self = !s || !strcmp(s, "yes");
-	int slot[ENV_MAX_FIGURES], n = 1;
-	const char *family = NULL;
-	if (words_is_key(c->argv[0], "family")) {
-		family = c->argv[0] + strlen("family=");
-		n = family[0] ? family_members(&d->env, family, slot) : 0;
-		if (!n)
-			return cmd_fail(c, "not-found", "no family '%.60s' (load family PREFIX sex=... "
-					"makes one)", family);
-	} else if ((slot[0] = cmd_figure(c, c->argv[0])) < 0) {
+	int slot[ENV_MAX_FIGURES];
+	const char *family;
+	int n = cmd_figures(c, c->argv[0], slot, &family);
+	if (n < 0)
 		return -1;
-	}
 	int with[ENV_MAX_FIGURES][ENV_MAX_FIGURES], nwith[ENV_MAX_FIGURES];
 	for (int i = 0; i < n; i++)
 		if ((nwith[i] = others(c, slot[i], family ? slot : NULL, family ? n : 0, with[i])) < 0)

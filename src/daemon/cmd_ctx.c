@@ -13,8 +13,10 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "daemon/family.h"
 #include "daemon/jbuf.h"
 #include "daemon/statefile.h"
+#include "daemon/words.h"
 #include "pose/attach.h"
 
 int
@@ -53,6 +55,21 @@ cmd_figure(struct cmd_ctx *c, const char *ref)
 	if (slot < 0)
 		return resolve_error(c, slot, "figure", ref);
 	return slot;
+}
+
+int
+cmd_figures(struct cmd_ctx *c, const char *word, int slot[ENV_MAX_FIGURES], const char **family)
+{
+	*family = NULL;
+	if (!words_is_key(word, "family"))
+		return (slot[0] = cmd_figure(c, word)) < 0 ? -1 : 1;
+	const char *prefix = word + strlen("family=");
+	int n = prefix[0] ? family_members(&c->d->env, prefix, slot) : 0;
+	if (!n)
+		return cmd_fail(c, "not-found", "no family '%.60s' (load family PREFIX sex=... makes one)",
+				prefix);
+	*family = prefix;
+	return n;
 }
 
 int

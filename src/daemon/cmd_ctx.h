@@ -36,6 +36,13 @@ int cmd_fail(struct cmd_ctx *c, const char *code, const char *fmt, ...)
 
 /* shared argument helpers for handlers */
 int cmd_figure(struct cmd_ctx *c, const char *ref);       /* slot or -1 with the error set */
+/*
+ * The figures a word names: a figure, or "family=PREFIX" every member of
+ * that family, into slot; returns how many (1 for a figure), or -1 with the
+ * error set. *family gets the prefix for a family, else NULL.
+ */
+int cmd_figures(struct cmd_ctx *c, const char *word, int slot[ENV_MAX_FIGURES],
+		const char **family);
 int cmd_constraint(struct cmd_ctx *c, const char *ref);   /* slot or -1 */
 int cmd_load_ref(struct cmd_ctx *c, const char *ref);     /* a load's slot or -1 */
 int cmd_side(struct cmd_ctx *c, const char *w);          /* left 0, right 1, or -1 */

@@ -11,7 +11,6 @@
 
 #include "daemon/cmd_ctx.h"
 #include "daemon/envelopes.h"
-#include "daemon/family.h"
 #include "daemon/words.h"
 #include "figure/model.h"
 #include "pose/reach.h"
@@ -154,21 +153,9 @@ read_analyze(struct cmd_ctx *c, struct analyze *a)
 static int
 figures_of(struct cmd_ctx *c, int slot[ENV_MAX_FIGURES], const char **family)
 {
-	const char *w = c->argv[0];
-	*family = NULL;
-	int n;
-	if (words_is_key(w, "family")) {
-		const char *prefix = w + strlen("family=");
-		n = prefix[0] ? family_members(&c->d->env, prefix, slot) : 0;
-		if (!n)
-			return cmd_fail(c, "not-found",
-					"no family '%.60s' (load family PREFIX sex=... makes one)", prefix);
-		*family = prefix;
-	} else {
-		if ((slot[0] = cmd_figure(c, w)) < 0)
-			return -1;
-		n = 1;
-	}
+	int n = cmd_figures(c, c->argv[0], slot, family);
+	if (n < 0)
+		return -1;
 	for (int i = 0; i < n; i++)
 		if (!c->d->env.fig[slot[i]].is_human)
 			return cmd_fail(c, "bad-argument", "%s is not a human figure",

@@ -9,7 +9,6 @@
 #include <string.h>
 
 #include "daemon/cmd_ctx.h"
-#include "daemon/family.h"
 #include "daemon/loads_json.h"
 #include "daemon/loads_live.h"
 
@@ -33,17 +32,11 @@ int
 cmd_analyze_loads(struct cmd_ctx *c)
 {
 	struct daemon *d = c->d;
-	int slot[ENV_MAX_FIGURES], n = 1;
-	const char *family = NULL;
-	if (words_is_key(c->argv[0], "family")) {
-		family = c->argv[0] + strlen("family=");
-		n = family[0] ? family_members(&d->env, family, slot) : 0;
-		if (!n)
-			return cmd_fail(c, "not-found", "no family '%.60s' (load family PREFIX sex=... "
-					"makes one)", family);
-	} else if ((slot[0] = cmd_figure(c, c->argv[0])) < 0) {
+	int slot[ENV_MAX_FIGURES];
+	const char *family;
+	int n = cmd_figures(c, c->argv[0], slot, &family);
+	if (n < 0)
 		return -1;
-	}
 	const struct loads_live_fig *a[ENV_MAX_FIGURES];
 	for (int i = 0; i < n; i++)
 		if (!(a[i] = loads_live_of(d, slot[i])))
