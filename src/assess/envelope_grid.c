@@ -410,6 +410,19 @@ trace_surface(struct field *f)
 
 /* ---- the surface's vertices --------------------------------------------------- */
 
+/*
+ * How far a vertex stays from its edge's grid points (m): vertices of
+ * different edges meet only there, so none coincides with another and the
+ * surface stays a 2-manifold when read back welded by position. Twice the
+ * reached tolerance: a vertex this near its reached inside point is reached
+ * within three times the tolerance (0.75 mm), inside can reach's 1 mm.
+ */
+static double
+edge_margin(const struct field *f)
+{
+	return fmin(2 * f->o->tol, 0.02 * f->step);
+}
+
 /* where the plane tangent to the reachable set at b's nearest reached point, moved in by a
  * margin, crosses a-b */
 static void
@@ -436,13 +449,84 @@ vertex_guess(const struct field *f, long a, long b, double dest[3])
 		else
 			t = 1 - d / len;
 	}
-	t = fmin(1, fmax(0, t));
+	double len = sqrt((pb[0] - pa[0]) * (pb[0] - pa[0]) + (pb[1] - pa[1]) * (pb[1] - pa[1]) +
+			  (pb[2] - pa[2]) * (pb[2] - pa[2]));
+	double e = len > 0 ? edge_margin(f) / len : 0;
+	t = fmin(1 - e, fmax(e, t));
 	for (int i = 0; i < 3; i++)
 		dest[i] = pa[i] + t * (pb[i] - pa[i]);
 }
 
-/* each vertex placed and sent to the solver: a vertex not reached moves to where the
- * effector ended, or, if that is further than a step, to its edge's inside point */
+/* the point of edge a-b (a inside) the edge margin from a: reached, as a is */
+static void
+vertex_inside(const struct field *f, long a, long b, double dest[3])
+{
+	double pa[3], pb[3];
+	point_pos(f, a, pa);
+	point_pos(f, b, pb);
+	double len = sqrt((pb[0] - pa[0]) * (pb[0] - pa[0]) + (pb[1] - pa[1]) * (pb[1] - pa[1]) +
+			  (pb[2] - pa[2]) * (pb[2] - pa[2]));
+	double e = len > 0 ? edge_margin(f) / len : 0;
+	for (int i = 0; i < 3; i++)
+		dest[i] = pa[i] + e * (pb[i] - pa[i]);
+}
+
+/* vertices by position, for finding those that coincide */
+static const float *sort_vert;
+
+static int
+by_position(const void *x, const void *y)
+{
+	const float *a = sort_vert + 3 * *(const long *)x, *b = sort_vert + 3 * *(const long *)y;
+	for (int c = 0; c < 3; c++)
+		if (a[c] != b[c])
+			return a[c] < b[c] ? -1 : 1;
+	return 0;
+}
+
+#define NUDGE 2e-6 /* m: a vertex moved off another it coincides with, towards its inside point */
+
+/*
+ * Two vertices the solver sent to one point (two targets out of reach whose
+ * solves end alike) would make the surface touch itself there once read back
+ * welded by position, as every STL reader does: each but the first of a run
+ * of coincident vertices is moved a few micrometres towards its edge's
+ * inside point. Returns 0, or -1 when out of memory.
+ */
+static int
+separate_coincident(const struct field *f, struct mc_mesh *mesh, const long *edges)
+{
+	long n = mesh->nvert;
+	long *order = malloc((size_t)n * sizeof *order);
+	if (!order)
+		return -1;
+	for (long v = 0; v < n; v++)
+		order[v] = v;
+	sort_vert = mesh->vert;
+	qsort(order, (size_t)n, sizeof *order, by_position);
+	for (long i = 1, run = 0; i < n; i++) {
+		run = by_position(&order[i - 1], &order[i]) ? 0 : run + 1;
+		if (!run)
+			continue;
+		long v = order[i];
+		float *q = &mesh->vert[3 * v];
+		double pa[3], d[3], len = 0;
+		point_pos(f, edges[2 * v], pa);
+		for (int c = 0; c < 3; c++) {
+			d[c] = pa[c] - q[c];
+			len += d[c] * d[c];
+		}
+		len = sqrt(len);
+		for (int c = 0; c < 3; c++)
+			q[c] = (float)(q[c] + (len > 0 ? d[c] / len : 1) * NUDGE * (double)run);
+	}
+	free(order);
+	return 0;
+}
+
+/* each vertex placed on its edge and sent to the solver: a vertex not reached moves to
+ * where the effector ended, or, if that is further than a step, along its edge to the
+ * edge margin from its inside point */
 static int
 place_vertices(struct field *f, struct mc_mesh *mesh, const long *edges)
 {
@@ -481,11 +565,13 @@ place_vertices(struct field *f, struct mc_mesh *mesh, const long *edges)
 		else if (d <= f->step)
 			memcpy(q, e, sizeof q);
 		else
-			point_pos(f, edges[2 * v], q);
+			vertex_inside(f, edges[2 * v], edges[2 * v + 1], q);
 		for (int c = 0; c < 3; c++)
 			mesh->vert[3 * v + c] = (float)q[c];
 	}
 	free(pts);
+	if (separate_coincident(f, mesh, edges) < 0)
+		return -1;
 	mc_mesh_finish(mesh);
 	return 0;
 }

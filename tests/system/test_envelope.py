@@ -398,14 +398,6 @@ def test_the_comfort_zone(daemon):
         assert all(v["comfort_shortfall"] > RES for v in t["targets"][4:])
 
 
-# The surfaces the envelope computation makes (assess/envelope.c) are not closed yet: the
-# arm's has an edge shared by four triangles, the comfort zone's sheets touch along grid
-# edges. The files are written as the surfaces are; strict, so that these tests fail the
-# day the surfaces close, and the markers go.
-NOT_CLOSED = "the envelope's surface has an edge shared by more than two triangles"
-
-
-@pytest.mark.xfail(strict=True, reason=NOT_CLOSED)
 @pytest.mark.parametrize("part", ["reach", "comfort"])
 def test_the_files_are_closed_surfaces(daemon, part):
     """The envelope's and the comfort zone's STL, read by trimesh, are watertight and
