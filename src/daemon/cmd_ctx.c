@@ -18,6 +18,7 @@
 #include "daemon/statefile.h"
 #include "daemon/words.h"
 #include "pose/attach.h"
+#include "pose/reach.h"
 
 int
 cmd_fail(struct cmd_ctx *c, const char *code, const char *fmt, ...)
@@ -46,6 +47,41 @@ cmd_side(struct cmd_ctx *c, const char *w)
 	if (!strcmp(w, "right"))
 		return 1;
 	return cmd_fail(c, "bad-argument", "left or right, not '%.20s'", w);
+}
+
+static const char *const reach_modes[] = { "arm", "torso", "body" };
+
+const char *
+cmd_reach_mode_name(int mode)
+{
+	return mode >= REACH_ARM && mode <= REACH_BODY ? reach_modes[mode] : "?";
+}
+
+int
+cmd_reach_words(struct cmd_ctx *c, int *side, int *mode, int *balance)
+{
+	const char *hand = cmd_key(c, "hand");
+	if (!hand)
+		return cmd_fail(c, "arity", "hand=left|right");
+	if ((*side = cmd_side(c, hand)) < 0)
+		return -1;
+	const char *m = cmd_key(c, "mode");
+	if (m) {
+		int k = 0;
+		while (k < 3 && strcmp(m, reach_modes[k]))
+			k++;
+		if (k == 3)
+			return cmd_fail(c, "bad-argument", "mode=arm|torso|body");
+		*mode = k;
+	}
+	const char *bal = cmd_key(c, "balance");
+	if (bal && strcmp(bal, "on") && strcmp(bal, "off"))
+		return cmd_fail(c, "bad-argument", "balance=on|off");
+	if (bal && *mode != REACH_BODY)
+		return cmd_fail(c, "bad-argument", "balance= is for mode=body (the arm and torso "
+				"move nothing the feet carry)");
+	*balance = !bal || !strcmp(bal, "on");
+	return 0;
 }
 
 int

@@ -46,6 +46,15 @@ int cmd_figures(struct cmd_ctx *c, const char *word, int slot[ENV_MAX_FIGURES],
 int cmd_constraint(struct cmd_ctx *c, const char *ref);   /* slot or -1 */
 int cmd_load_ref(struct cmd_ctx *c, const char *ref);     /* a load's slot or -1 */
 int cmd_side(struct cmd_ctx *c, const char *w);          /* left 0, right 1, or -1 */
+/*
+ * A reach's words (can reach, reach, analyze reach): hand=left|right
+ * (required) into *side, mode=arm|torso|body into *mode (enum reach_mode;
+ * left as given when absent), balance=on|off into *balance (1 when absent;
+ * for mode=body only). 0, or -1 with the error set.
+ */
+int cmd_reach_words(struct cmd_ctx *c, int *side, int *mode, int *balance);
+/* a reach mode's word: "arm", "torso", "body" */
+const char *cmd_reach_mode_name(int mode);
 const char *cmd_key(struct cmd_ctx *c, const char *key);  /* "key=value" among the args */
 /* path inside the state directory: 0 with the full path in dest, or -1 with the error set */
 int cmd_path(struct cmd_ctx *c, const char *rel, int for_write, char *dest, size_t len);

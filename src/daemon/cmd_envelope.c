@@ -17,7 +17,6 @@
 
 #define TARGETS_MAX 32
 
-static const char *const mode_names[] = { "arm", "torso", "body" };
 static const char *const side_names[] = { "left", "right" };
 
 struct analyze {
@@ -95,27 +94,12 @@ read_analyze(struct cmd_ctx *c, struct analyze *a)
 			continue;
 		return cmd_fail(c, "bad-argument", "unexpected '%.60s'", w);
 	}
-	const char *hand = cmd_key(c, "hand");
-	if (!hand)
-		return cmd_fail(c, "arity", "hand=left|right");
-	if ((a->req.side = cmd_side(c, hand)) < 0)
+	int side, mode = (int)a->req.mode, balance;
+	if (cmd_reach_words(c, &side, &mode, &balance) < 0)
 		return -1;
-	const char *mode = cmd_key(c, "mode");
-	if (mode) {
-		int k = 0;
-		while (k < 3 && strcmp(mode, mode_names[k]))
-			k++;
-		if (k == 3)
-			return cmd_fail(c, "bad-argument", "mode=arm|torso|body");
-		a->req.mode = (enum reach_mode)k;
-	}
-	const char *bal = cmd_key(c, "balance");
-	if (bal && strcmp(bal, "on") && strcmp(bal, "off"))
-		return cmd_fail(c, "bad-argument", "balance=on|off");
-	if (bal && a->req.mode != REACH_BODY)
-		return cmd_fail(c, "bad-argument", "balance= is for mode=body (the arm and torso "
-				"move nothing the feet carry)");
-	a->req.balance = !bal || !strcmp(bal, "on");
+	a->req.side = side;
+	a->req.mode = (enum reach_mode)mode;
+	a->req.balance = balance;
 	const char *res = cmd_key(c, "resolution");
 	if (res && (words_number(res, UNIT_LENGTH, &a->req.resolution) < 0 ||
 		    !(a->req.resolution >= ENVELOPE_RES_MIN && a->req.resolution <= ENVELOPE_RES_MAX)))
@@ -175,7 +159,7 @@ envelope_name(const struct cmd_ctx *c, const struct analyze *a, int fig, const c
 		snprintf(dest, len, "%s", a->name);
 	else
 		snprintf(dest, len, "%s.%s.%s", fname, side_names[a->req.side],
-			 mode_names[a->req.mode]);
+			 cmd_reach_mode_name(a->req.mode));
 }
 
 static json_t *
@@ -201,7 +185,7 @@ envelope_json(const char *name, const char *fig, const struct envelope *e)
 	json_object_set_new(o, "name", json_string(name));
 	json_object_set_new(o, "figure", json_string(fig));
 	json_object_set_new(o, "hand", json_string(side_names[e->req.side]));
-	json_object_set_new(o, "mode", json_string(mode_names[e->req.mode]));
+	json_object_set_new(o, "mode", json_string(cmd_reach_mode_name(e->req.mode)));
 	if (e->req.mode == REACH_BODY)
 		json_object_set_new(o, "balance", json_boolean(e->req.balance));
 	mesh_json(o, &e->reach);
@@ -338,7 +322,7 @@ replies(struct cmd_ctx *c, const struct analyze *a, const int *slot, int n, cons
 			o = envelope_json(name, fname, &es[i]);
 		} else {
 			o = json_pack("{s:s, s:s, s:s}", "figure", fname, "hand",
-				      side_names[a->req.side], "mode", mode_names[a->req.mode]);
+				      side_names[a->req.side], "mode", cmd_reach_mode_name(a->req.mode));
 		}
 		if (a->ntarget) {
 			json_t *v = verdicts(c, a, slot[i], reached[i]);

@@ -11,7 +11,6 @@
 #include "figure/kin.h"
 #include "pose/reach.h"
 
-static const char *const mode_names[] = { "arm", "torso", "body" };
 
 #define REACH_RESTARTS_MAX 64 /* reach_solve's own bound */
 
@@ -33,27 +32,12 @@ read_request(struct cmd_ctx *c, const char *usage, int may_take, struct reach_re
 	}
 	if (!have_target)
 		return cmd_fail(c, "arity", "%s", usage);
-	const char *hand = cmd_key(c, "hand");
-	if (!hand)
-		return cmd_fail(c, "arity", "hand=left|right");
-	if ((q->side = cmd_side(c, hand)) < 0)
+	int side, mode = (int)q->mode, balance;
+	if (cmd_reach_words(c, &side, &mode, &balance) < 0)
 		return -1;
-	const char *mode = cmd_key(c, "mode");
-	if (mode) {
-		int k = 0;
-		while (k < 3 && strcmp(mode, mode_names[k]))
-			k++;
-		if (k == 3)
-			return cmd_fail(c, "bad-argument", "mode=arm|torso|body");
-		q->mode = (enum reach_mode)k;
-	}
-	const char *bal = cmd_key(c, "balance");
-	if (bal && strcmp(bal, "on") && strcmp(bal, "off"))
-		return cmd_fail(c, "bad-argument", "balance=on|off");
-	if (bal && q->mode != REACH_BODY)
-		return cmd_fail(c, "bad-argument", "balance= is for mode=body (the arm and torso "
-				"move nothing the feet carry)");
-	q->balance = !bal || !strcmp(bal, "on");
+	q->side = side;
+	q->mode = (enum reach_mode)mode;
+	q->balance = balance;
 	const char *rs = cmd_key(c, "restarts");
 	if (rs) { /* as the envelopes solve (assess/envelope.h): stuck short, from other postures */
 		char *end;
@@ -107,7 +91,7 @@ reply(struct cmd_ctx *c, const struct model *m, const struct reach *r,
 	json_object_set_new(c->result, "posture", p);
 	json_object_set_new(c->result, "limiting", lim);
 	json_object_set_new(c->result, "margin", json_real(res->margin));
-	json_object_set_new(c->result, "mode", json_string(mode_names[q->mode]));
+	json_object_set_new(c->result, "mode", json_string(cmd_reach_mode_name(q->mode)));
 }
 
 int
