@@ -43,6 +43,9 @@ struct collide_mesh *collide_mesh_make(const float *pos, int nvert, const unsign
 				       char *err, size_t errlen);
 void collide_mesh_free(struct collide_mesh *m);
 
+/* the mesh's triangles */
+int collide_mesh_triangles(const struct collide_mesh *m);
+
 /* the mesh's bounding box in its own frame */
 void collide_mesh_bounds(const struct collide_mesh *m, double lo[3], double hi[3]);
 

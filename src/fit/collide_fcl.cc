@@ -103,6 +103,12 @@ collide_mesh_free(struct collide_mesh *m)
 	delete m;
 }
 
+extern "C" int
+collide_mesh_triangles(const struct collide_mesh *m)
+{
+	return m->model->num_tris;
+}
+
 extern "C" void
 collide_mesh_bounds(const struct collide_mesh *m, double lo[3], double hi[3])
 {

@@ -39,7 +39,8 @@ struct fit_model {
 };
 
 /*
- * The collision model of m (meshes in m's segment frames). Returns NULL
+ * The collision model of m (meshes in m's segment frames; the hierarchies built on
+ * up to 4 cores). Returns NULL
  * with a message in err when memory runs out or a mesh is malformed.
  */
 struct fit_model *fit_model_make(const struct model *m, char *err, size_t errlen);
