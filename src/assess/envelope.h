@@ -34,7 +34,9 @@
 #include "pose/reach.h"
 #include "assess/envelope_comfort.h"
 
-#define ENVELOPE_RES_DEFAULT 0.02 /* m: the grid's step */
+/* m: the grid's step: 2 cm, the resolution the envelopes were specified at; 5 mm to
+ * 25 cm allowed (finer grids outgrow memory, coarser ones miss a hand's width) */
+#define ENVELOPE_RES_DEFAULT 0.02
 #define ENVELOPE_RES_MIN 0.005
 #define ENVELOPE_RES_MAX 0.25
 /* the arm's solves: "can reach" with this many random restarts when stuck short of a

@@ -13,7 +13,9 @@
 #include "daemon/jbuf.h"
 #include "daemon/words.h"
 
-#define CLEARANCE_DEFAULT 0.02 /* m: the threshold unless threshold= says */
+/* m: the threshold unless threshold= says. Not a standard's figure (none was found to
+ * cite): the 2 cm the fit analysis was specified with, a working default to set per task */
+#define CLEARANCE_DEFAULT 0.02
 #define REPLY_BUF (4 * 1024 * 1024)
 
 static struct clearance_result result; /* large: one a command, never two at once */
